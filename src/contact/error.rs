@@ -1,0 +1,41 @@
+use thiserror::Error;
+
+/// Why a contact query could not be answered.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum ContactError {
+    /// An input value is NaN or infinite.
+    #[error("{what}[{index}] is not finite: {value}")]
+    NotFinite {
+        /// Which input: `"r12"`, `"q1"` or `"q2"`.
+        what: &'static str,
+        /// Index of the offending component.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A quadratic form is not symmetric positive definite (negative, indefinite or
+    /// singular): its LDLᵀ factorisation met a pivot that is not strictly positive.
+    #[error("{what} is not positive definite: pivot {pivot} of its LDLᵀ factorisation is {value}")]
+    NotPositiveDefinite {
+        /// Which input: `"q1"` or `"q2"`.
+        what: &'static str,
+        /// Index (0–2) of the failing pivot.
+        pivot: usize,
+        /// The pivot's value.
+        value: f64,
+    },
+    /// An intermediate quantity overflowed to infinity (inputs too large to handle in
+    /// double precision).
+    #[error("overflow while computing {what}")]
+    Overflow {
+        /// The quantity that overflowed.
+        what: &'static str,
+    },
+    /// The iteration cap was reached before a decision could be proved.
+    #[error("no decision after {iterations} iterations")]
+    NotConverged {
+        /// Iterations done.
+        iterations: u32,
+    },
+}

@@ -1,0 +1,45 @@
+//! Narrow phase: do two ellipsoids overlap, and by how much?
+//!
+//! Every function here takes the pair in relative form: `r12 = c2 - c1` and the two
+//! quadratic forms `q1`, `q2` (upper triangle of the symmetric positive-definite matrix
+//! `Q = R diag(a1², a2², a3²) Rᵀ`, row-major: `q0 q1 q2 / q3 q4 / q5`, as in pw85).
+//! Boxes, periodic images and ids are the caller's business.
+
+mod error;
+pub mod rational;
+pub mod wang;
+
+pub use error::ContactError;
+
+/// A vector in 3D: `[x, y, z]`.
+pub type Vec3 = [f64; 3];
+/// A symmetric 3×3 matrix stored as its upper triangle, row-major:
+/// `[m00, m01, m02, m11, m12, m22]`.
+pub type Sym3 = [f64; 6];
+
+/// Why an iterative routine stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Stop {
+    /// The answer was found without iterating (closed form, e.g. `r12 = 0`).
+    Exact,
+    /// The stopping test was met: the answer is accurate to the documented tolerance.
+    Converged,
+    /// The iteration cap was reached before the stopping test was met. The result is the
+    /// best estimate so far and must not be trusted as a decision.
+    MaxIterations,
+}
+
+/// The value of the contact function and where it was found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// μ², the maximum of `f(λ) = λ(1−λ) r12ᵀ[(1−λ)Q1 + λQ2]⁻¹ r12` over `λ ∈ [0, 1]`.
+    /// `μ² < 1`: the ellipsoids overlap; `μ² > 1`: they are apart.
+    pub mu2: f64,
+    /// The maximiser λ.
+    pub lambda: f64,
+    /// Why the solver stopped.
+    pub stop: Stop,
+    /// Iterations done.
+    pub iterations: u32,
+}

@@ -1,0 +1,1 @@
+//! Contact function through its rational form (to be written).

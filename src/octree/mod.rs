@@ -1,0 +1,1 @@
+//! Broad phase: octree over the box plus bounding spheres.
