@@ -32,6 +32,9 @@ pub enum ContactError {
         /// The quantity that overflowed.
         what: &'static str,
     },
+    /// The centres coincide, so the contact normal is undefined.
+    #[error("the centres coincide: the contact normal is undefined")]
+    CoincidentCentres,
     /// The iteration cap was reached before a decision could be proved.
     #[error("no decision after {iterations} iterations")]
     NotConverged {

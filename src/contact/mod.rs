@@ -5,11 +5,26 @@
 //! `Q = R diag(a1², a2², a3²) Rᵀ`, row-major: `q0 q1 q2 / q3 q4 / q5`, as in pw85).
 //! Boxes, periodic images and ids are the caller's business.
 
+mod bernstein;
+mod dd;
+mod ellipsoid;
 mod error;
+mod geometry;
+mod ldl;
+mod method;
+mod overlap;
+mod perram_wertheim;
 pub mod rational;
+mod scale;
 pub mod wang;
 
+pub use ellipsoid::{Ellipsoid, ShapeError, QUATERNION_NORM_TOL};
 pub use error::ContactError;
+pub use geometry::{contact_geometry, ContactGeometry};
+pub use ldl::MIN_RELATIVE_PIVOT;
+pub use method::{Answer, Method, Timing, UnknownMethod};
+pub use overlap::{overlaps, DECISION_SAFETY};
+pub use perram_wertheim::{contact_function, contact_function_fast, GAIN_TOL, MAX_ITERATIONS};
 
 /// A vector in 3D: `[x, y, z]`.
 pub type Vec3 = [f64; 3];

@@ -1,0 +1,67 @@
+//! Where and along which normal two ellipsoids touch once scaled by μ, and how far apart
+//! they are.
+
+use super::ldl::{dot, sym_mul, Ldl};
+use super::{contact_function, ContactError, Sym3, Vec3};
+
+/// Contact geometry of a pair, for collision response.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactGeometry {
+    /// The contact function μ² (see [`contact_function`]).
+    pub mu2: f64,
+    /// Its maximiser λ.
+    pub lambda: f64,
+    /// The point where the two ellipsoids, both scaled by μ about their centres,
+    /// touch, relative to the first centre: `x₀ − c1 = (1−λ) Q1 Q(λ)⁻¹ r12`
+    /// (pw85 theory, eq. 9a).
+    pub point: Vec3,
+    /// The common unit normal of the scaled ellipsoids at `point`, pointing from the
+    /// first ellipsoid to the second: `Q(λ)⁻¹ r12`, normalised (Donev et al. 2005,
+    /// eq. 18).
+    pub normal: Vec3,
+    /// Signed gap estimate: `d (1 − 1/μ)` along `r12`, projected on the normal
+    /// (`d = |r12|`). Positive when apart, negative (a penetration depth) when
+    /// overlapping.
+    pub gap: f64,
+}
+
+/// The contact point, normal and gap of two ellipsoids (see [`ContactGeometry`]).
+///
+/// Coincident centres have no normal: `r12 = 0` is [`ContactError::CoincidentCentres`].
+pub fn contact_geometry(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<ContactGeometry, ContactError> {
+    let c = contact_function(r12, q1, q2)?;
+    let d = dot(r12, r12).sqrt();
+    if d == 0.0 {
+        return Err(ContactError::CoincidentCentres);
+    }
+    let (lambda, m) = (c.lambda, 1.0 - c.lambda);
+    let mut q = [0.0; 6];
+    for k in 0..6 {
+        q[k] = m * q1[k] + lambda * q2[k];
+    }
+    // Q(λ) is a convex combination of two matrices that contact_function factored.
+    let ldl = Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
+        what: "(1−λ)q1 + λq2",
+        pivot,
+        value,
+    })?;
+    let s = ldl.solve(r12);
+    let q1s = sym_mul(q1, &s);
+    let point = q1s.map(|x| m * x);
+    let norm = dot(&s, &s).sqrt();
+    let normal = s.map(|x| x / norm);
+    let gap = d * (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal) / d;
+    if !(gap.is_finite() && norm.is_finite() && norm > 0.0) || point.iter().any(|x| !x.is_finite())
+    {
+        return Err(ContactError::Overflow {
+            what: "the contact geometry",
+        });
+    }
+    Ok(ContactGeometry {
+        mu2: c.mu2,
+        lambda,
+        point,
+        normal,
+        gap,
+    })
+}

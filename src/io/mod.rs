@@ -1,0 +1,4 @@
+//! Files in and out: contact cases (CSV), and later scenes, exports and reports.
+
+pub mod atomic;
+pub mod cases;

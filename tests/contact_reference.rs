@@ -1,0 +1,116 @@
+//! Accuracy of the contact methods against the mpmath references in `tests/data`
+//! (made by `tools/make_contact_reference.py`, ≥ 50 correct digits).
+
+use grainpack::contact::{contact_function, contact_function_fast, overlaps, wang, Stop};
+use grainpack::io::cases::{Case, CaseTable};
+use std::collections::BTreeMap;
+
+struct Row {
+    case: Case,
+    mu2: f64,
+    category: String,
+}
+
+fn load(name: &str) -> Vec<Row> {
+    let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    let table = CaseTable::read(std::fs::File::open(&path).unwrap()).unwrap();
+    let has_category = table.column("category").is_some();
+    (0..table.rows.len())
+        .map(|i| Row {
+            case: table.case(i).unwrap(),
+            mu2: table.number(i, "mu2").unwrap(),
+            category: if has_category {
+                let (_, record) = table.rows[i].as_ref().unwrap();
+                record[table.column("category").unwrap()].to_string()
+            } else {
+                "typical".into()
+            },
+        })
+        .collect()
+}
+
+/// Largest relative error of μ² per category.
+fn max_errors(rows: &[Row], f: impl Fn(&Case) -> f64) -> BTreeMap<String, f64> {
+    let mut worst = BTreeMap::new();
+    for row in rows {
+        let err = ((f(&row.case) - row.mu2) / row.mu2).abs();
+        let w = worst.entry(row.category.clone()).or_insert(0.0f64);
+        *w = w.max(err);
+    }
+    worst
+}
+
+fn accurate(c: &Case) -> f64 {
+    let out = contact_function(&c.r12, &c.q1, &c.q2).unwrap();
+    assert_eq!(out.stop, Stop::Converged, "line {}", c.line);
+    out.mu2
+}
+
+#[test]
+fn contact_function_is_within_1e_14_on_the_typical_set() {
+    let rows = load("contact_typical.csv");
+    assert_eq!(rows.len(), 1000);
+    let worst = max_errors(&rows, accurate)["typical"];
+    assert!(worst <= 1e-14, "max relative error {worst:e}");
+}
+
+#[test]
+fn contact_function_is_within_1e_12_on_every_extreme_category() {
+    let rows = load("contact_extreme.csv");
+    let worst = max_errors(&rows, accurate);
+    assert_eq!(worst.len(), 7, "{worst:?}");
+    for (category, err) in &worst {
+        assert!(*err <= 1e-12, "{category}: max relative error {err:e}");
+    }
+}
+
+/// The double-precision method errs by about ε·cond(Q(λ*)): cond stays below 1e4
+/// on the typical set (semi-axes 0.1–10), so 1e-11 bounds it with room for the
+/// constant, and a regression to a sloppier stopping rule would show.
+#[test]
+fn fast_contact_function_is_within_1e_11_on_the_typical_set() {
+    let rows = load("contact_typical.csv");
+    let worst = max_errors(&rows, |c| {
+        contact_function_fast(&c.r12, &c.q1, &c.q2).unwrap().mu2
+    });
+    assert!(worst["typical"] <= 1e-11, "{worst:?}");
+}
+
+#[test]
+fn overlaps_agrees_with_the_reference_sign_away_from_tangency() {
+    for name in ["contact_typical.csv", "contact_extreme.csv"] {
+        for row in load(name) {
+            if (row.mu2 - 1.0).abs() <= 1e-12 {
+                continue;
+            }
+            let c = &row.case;
+            assert_eq!(
+                overlaps(&c.r12, &c.q1, &c.q2).unwrap(),
+                row.mu2 < 1.0,
+                "{name} line {} ({}), mu2 = {}",
+                c.line,
+                row.category,
+                row.mu2
+            );
+        }
+    }
+}
+
+/// Wang–Wang–Kim is fragile near tangency; away from it (|μ²−1| > 1e-3) on the
+/// typical set it must agree with the reference.
+#[test]
+fn wang_agrees_with_the_reference_away_from_tangency_on_the_typical_set() {
+    for row in load("contact_typical.csv") {
+        if (row.mu2 - 1.0).abs() <= 1e-3 {
+            continue;
+        }
+        let c = &row.case;
+        assert_eq!(
+            wang::separated(&c.r12, &c.q1, &c.q2).unwrap(),
+            row.mu2 > 1.0,
+            "line {}, mu2 = {}",
+            c.line,
+            row.mu2
+        );
+    }
+}
