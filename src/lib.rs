@@ -8,5 +8,11 @@
 //!   walled box.
 //! - `packing` and `io`: the growth-and-collision loop and the scene files (to come).
 
+// `!(x > y)` is how the numerics say "not positive, or NaN": a NaN must fail the
+// test it meets, which `x <= y` would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod contact;
+pub mod io;
+#[cfg(not(feature = "wip-no-octree"))]
 pub mod octree;

@@ -1,8 +1,8 @@
 //! Properties of the contact layer that hold whatever the reference data.
 
 use grainpack::contact::{
-    contact_function, contact_function_fast, contact_geometry, overlaps, ContactError, Ellipsoid,
-    ShapeError, Stop, Sym3, Vec3,
+    contact_function, contact_function_fast, contact_geometry, overlaps, overlaps_prepared,
+    ContactError, Ellipsoid, PreparedEllipsoid, ShapeError, Stop, Sym3, Vec3,
 };
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use rand::rngs::StdRng;
@@ -56,7 +56,7 @@ fn worked_example_of_the_pw85_manual_is_reproduced() {
     // Our spheroid keeps Q_zz = 0.1² exactly; mpmath gives 3.36270604063862922… there.
     let e1 = Ellipsoid::spheroid(10.0, 0.1, [0.0, 0.0, 1.0]).unwrap();
     let c = contact_function(&r12, &e1.q, &q2).unwrap();
-    assert!(close(c.mu2, 3.3627060406386292, IDENTITY_TOL), "{c:?}");
+    assert!(close(c.mu2, 3.362_706_040_638_629, IDENTITY_TOL), "{c:?}");
 }
 
 #[test]
@@ -296,8 +296,8 @@ fn constructors_reject_what_is_not_an_ellipsoid() {
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let e = Ellipsoid::new([3.0, 1.0, 2.0], [h, 0.0, 0.0, h]).unwrap();
     let expected = [1.0, 0.0, 0.0, 9.0, 0.0, 4.0];
-    for k in 0..6 {
-        assert!((e.q[k] - expected[k]).abs() < 1e-14, "{:?}", e.q);
+    for (got, want) in e.q.iter().zip(expected) {
+        assert!((got - want).abs() < 1e-14, "{:?}", e.q);
     }
     let axes = e.semi_axes();
     for (k, a) in [1.0, 2.0, 3.0].into_iter().enumerate() {
@@ -353,4 +353,38 @@ fn arbitrary_input_never_panics_loops_or_returns_nan() {
         answered > 99_000,
         "only {answered} answers: the valid half (100 000 calls) should pass"
     );
+}
+
+#[test]
+fn prepared_shapes_scale_like_scaled_ellipsoids_and_decide_like_overlaps() {
+    let mut rng = StdRng::seed_from_u64(10);
+    for _ in 0..2000 {
+        let (r, q1, q2) = random_pair(&mut rng);
+        let s = rng.random_range(0.2..3.0);
+        let e1 = Ellipsoid::from_quadratic_form(q1).unwrap();
+        let grown = PreparedEllipsoid::new(&e1).unwrap().scaled(s);
+        let direct =
+            PreparedEllipsoid::new(&Ellipsoid::from_quadratic_form(q1.map(|x| x * s * s)).unwrap())
+                .unwrap();
+        assert!(close(
+            grown.bounding_radius(),
+            direct.bounding_radius(),
+            IDENTITY_TOL
+        ));
+        // The smallest eigenvalue is accurate to ε·cond(Q) relative, cond ≤ 1e4 here.
+        assert!(close(
+            grown.inscribed_radius(),
+            direct.inscribed_radius(),
+            1e4 * f64::EPSILON
+        ));
+        let p2 = PreparedEllipsoid::new(&Ellipsoid::from_quadratic_form(q2).unwrap()).unwrap();
+        let mu2 = contact_function(&r, grown.q(), &q2).unwrap().mu2;
+        if (mu2 - 1.0).abs() > 1e-12 {
+            assert_eq!(overlaps_prepared(&r, &grown, &p2).unwrap(), mu2 < 1.0);
+            assert_eq!(overlaps(&r, grown.q(), &q2).unwrap(), mu2 < 1.0);
+        }
+    }
+    let unit = PreparedEllipsoid::new(&Ellipsoid::sphere(1.0).unwrap()).unwrap();
+    assert!(overlaps_prepared(&[f64::NAN, 0.0, 0.0], &unit, &unit).is_err());
+    assert!(overlaps_prepared(&[f64::INFINITY, 0.0, 0.0], &unit, &unit).is_err());
 }

@@ -1,7 +1,10 @@
 //! Accuracy of the contact methods against the mpmath references in `tests/data`
 //! (made by `tools/make_contact_reference.py`, ≥ 50 correct digits).
 
-use grainpack::contact::{contact_function, contact_function_fast, overlaps, wang, Stop};
+use grainpack::contact::{
+    contact_function, contact_function_fast, overlaps, overlaps_prepared, wang, Ellipsoid,
+    PreparedEllipsoid, Stop,
+};
 use grainpack::io::cases::{Case, CaseTable};
 use std::collections::BTreeMap;
 
@@ -84,6 +87,15 @@ fn overlaps_agrees_with_the_reference_sign_away_from_tangency() {
                 continue;
             }
             let c = &row.case;
+            let prepare =
+                |q| PreparedEllipsoid::new(&Ellipsoid::from_quadratic_form(q).unwrap()).unwrap();
+            let (p1, p2) = (prepare(c.q1), prepare(c.q2));
+            assert_eq!(
+                overlaps_prepared(&c.r12, &p1, &p2).unwrap(),
+                row.mu2 < 1.0,
+                "prepared: {name} line {}",
+                c.line
+            );
             assert_eq!(
                 overlaps(&c.r12, &c.q1, &c.q2).unwrap(),
                 row.mu2 < 1.0,

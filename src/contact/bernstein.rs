@@ -12,6 +12,7 @@
 //! `φ = ln f`, concave like `f`, whose derivative
 //! `φ′ = 1/t − 1/s + a′/a − b′/b` carries the poles at both ends exactly.
 
+use super::sym::pencil_coefficients;
 use super::{Sym3, Vec3};
 
 /// The seven Bernstein coefficients of `a` and `b`.
@@ -19,34 +20,6 @@ use super::{Sym3, Vec3};
 pub(crate) struct Rational {
     a: [f64; 3],
     b: [f64; 4],
-}
-
-/// `adj X` of a symmetric matrix, itself symmetric.
-#[inline(always)]
-fn adjugate(x: &Sym3) -> Sym3 {
-    [
-        x[3] * x[5] - x[4] * x[4],
-        x[2] * x[4] - x[1] * x[5],
-        x[1] * x[4] - x[2] * x[3],
-        x[0] * x[5] - x[2] * x[2],
-        x[1] * x[2] - x[0] * x[4],
-        x[0] * x[3] - x[1] * x[1],
-    ]
-}
-
-/// `tr(X Y)` of two symmetric matrices.
-#[inline(always)]
-fn trace_of_product(x: &Sym3, y: &Sym3) -> f64 {
-    x[0] * y[0] + x[3] * y[3] + x[5] * y[5] + 2.0 * (x[1] * y[1] + x[2] * y[2] + x[4] * y[4])
-}
-
-/// `rᵀ X r` of a symmetric matrix.
-#[inline(always)]
-fn quadratic(x: &Sym3, r: &Vec3) -> f64 {
-    r[0] * r[0] * x[0]
-        + r[1] * r[1] * x[3]
-        + r[2] * r[2] * x[5]
-        + 2.0 * (r[0] * r[1] * x[1] + r[0] * r[2] * x[2] + r[1] * r[2] * x[4])
 }
 
 impl Rational {
@@ -57,27 +30,10 @@ impl Rational {
     /// `ε cond` at worst.
     #[inline(always)]
     pub fn new(r: &Vec3, q1: &Sym3, q2: &Sym3, ends: [f64; 4]) -> Self {
-        let [det1, det2, a, b] = ends;
-        let (adj1, adj2) = (adjugate(q1), adjugate(q2));
-        // Mixed adjugate: adj(X + Y) − adj X − adj Y, entry by entry.
-        let (x, y) = (q1, q2);
-        let mixed = [
-            x[3] * y[5] + y[3] * x[5] - 2.0 * x[4] * y[4],
-            x[2] * y[4] + y[2] * x[4] - x[1] * y[5] - y[1] * x[5],
-            x[1] * y[4] + y[1] * x[4] - x[2] * y[3] - y[2] * x[3],
-            x[0] * y[5] + y[0] * x[5] - 2.0 * x[2] * y[2],
-            x[1] * y[2] + y[1] * x[2] - x[0] * y[4] - y[0] * x[4],
-            x[0] * y[3] + y[0] * x[3] - 2.0 * x[1] * y[1],
-        ];
-        Self {
-            a: [det1 * a, quadratic(&mixed, r), det2 * b],
-            b: [
-                det1,
-                trace_of_product(&adj1, y),
-                trace_of_product(x, &adj2),
-                det2,
-            ],
-        }
+        let [det1, det2, a_end, b_end] = ends;
+        let (mut a, mut b) = pencil_coefficients(q1, q2, r);
+        (a[0], a[2], b[0], b[3]) = (det1 * a_end, det2 * b_end, det1, det2);
+        Self { a, b }
     }
 
     /// `f(λ)`.

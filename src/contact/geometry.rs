@@ -1,7 +1,8 @@
 //! Where and along which normal two ellipsoids touch once scaled by μ, and how far apart
 //! they are.
 
-use super::ldl::{dot, sym_mul, Ldl};
+use super::ldl::Ldl;
+use super::sym::{dot, sym_mul};
 use super::{contact_function, ContactError, Sym3, Vec3};
 
 /// Contact geometry of a pair, for collision response.

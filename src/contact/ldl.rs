@@ -4,6 +4,8 @@
 //! positive-definite `Q` all pivots are positive; this is how positive definiteness is
 //! checked everywhere in the crate.
 
+#[cfg(test)]
+use super::sym::sym_mul;
 use super::{Sym3, Vec3};
 
 /// Smallest accepted pivot relative to the largest diagonal entry of `Q`:
@@ -59,6 +61,16 @@ impl Ldl {
         })
     }
 
+    /// The factors of `s Q`: `L` is unchanged, the pivots scale by `s`.
+    #[inline(always)]
+    pub fn scaled(&self, s: f64) -> Self {
+        Self {
+            d: self.d.map(|d| d * s),
+            inv_d: self.inv_d.map(|i| i / s),
+            ..*self
+        }
+    }
+
     /// `det Q = d0 d1 d2`.
     #[inline(always)]
     pub fn det(&self) -> f64 {
@@ -89,21 +101,6 @@ impl Ldl {
         let y2 = x[2] - self.l20 * y0 - self.l21 * y1;
         [y0, y1, y2]
     }
-}
-
-/// `Q u` for a symmetric `Q`.
-#[inline(always)]
-pub(crate) fn sym_mul(q: &Sym3, u: &Vec3) -> Vec3 {
-    [
-        q[0] * u[0] + q[1] * u[1] + q[2] * u[2],
-        q[1] * u[0] + q[3] * u[1] + q[4] * u[2],
-        q[2] * u[0] + q[4] * u[1] + q[5] * u[2],
-    ]
-}
-
-#[inline(always)]
-pub(crate) fn dot(a: &Vec3, b: &Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[cfg(test)]

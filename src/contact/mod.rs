@@ -14,8 +14,10 @@ mod ldl;
 mod method;
 mod overlap;
 mod perram_wertheim;
+mod prepared;
 pub mod rational;
 mod scale;
+mod sym;
 pub mod wang;
 
 pub use ellipsoid::{Ellipsoid, ShapeError, QUATERNION_NORM_TOL};
@@ -23,8 +25,12 @@ pub use error::ContactError;
 pub use geometry::{contact_geometry, ContactGeometry};
 pub use ldl::MIN_RELATIVE_PIVOT;
 pub use method::{Answer, Method, Timing, UnknownMethod};
-pub use overlap::{overlaps, DECISION_SAFETY};
-pub use perram_wertheim::{contact_function, contact_function_fast, GAIN_TOL, MAX_ITERATIONS};
+pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};
+pub use perram_wertheim::{
+    contact_function, contact_function_fast, CORRECTOR_GAIN_TOL, GAIN_TOL, HALLEY_FINAL_GAIN,
+    MAX_ITERATIONS,
+};
+pub use prepared::PreparedEllipsoid;
 
 /// A vector in 3D: `[x, y, z]`.
 pub type Vec3 = [f64; 3];

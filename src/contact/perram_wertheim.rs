@@ -11,8 +11,9 @@
 
 use super::bernstein::Rational;
 use super::dd::{two_prod, Acc};
-use super::ldl::{dot, sym_mul, Ldl};
+use super::ldl::Ldl;
 use super::scale::Prepared;
+use super::sym::{dot, sym_mul};
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
 
 /// Iteration cap. Bisection alone shrinks the bracket below one ulp of 1 in 53 steps,
@@ -24,6 +25,19 @@ pub const MAX_ITERATIONS: u32 = 64;
 /// order, about `(g²/(2g′f))^{3/2} ≤ GAIN_TOL^{3/2}`, so `GAIN_TOL = (ε/8)^{2/3} ≈ 9e-12`
 /// leaves at most `ε/8` of relative truncation error.
 pub const GAIN_TOL: f64 = 9.2e-12;
+
+/// A Halley step taken where the predicted gain is `G` leaves a gain of order `G³`
+/// (cubic convergence), so when `G ≤ HALLEY_FINAL_GAIN = 1e-6` the step is taken and
+/// the iteration ends without evaluating the derivatives again: what is left,
+/// `~1e-18` times the local constant, is far below [`GAIN_TOL`].
+pub const HALLEY_FINAL_GAIN: f64 = 1e-6;
+
+/// The corrector (Newton on the refined residual) stops when its predicted gain is at
+/// most `CORRECTOR_GAIN_TOL · f`. The gain is added, so what is left is the third-order
+/// remainder, `K · gain^{3/2}` with `K` up to ~1e3 when λ* is within 1e-6 of 0 or 1
+/// (measured on the reference set); `CORRECTOR_GAIN_TOL = ε` keeps that below ε/10.
+/// Predictor steps leave the first corrector step far below this on most pairs.
+pub const CORRECTOR_GAIN_TOL: f64 = f64::EPSILON;
 
 /// One evaluation of `f`, `g` and `g′` at λ, with the factorisation of `Q(λ)`.
 #[derive(Debug, Clone, Copy)]
@@ -113,10 +127,7 @@ impl<'a> Newton<'a> {
     #[inline(always)]
     pub fn new(p: &'a Prepared, a: f64, b: f64) -> Self {
         let (sa, sb) = (a.sqrt(), b.sqrt());
-        let mut q12 = [0.0; 6];
-        for k in 0..6 {
-            q12[k] = p.q2[k] - p.q1[k];
-        }
+        let q12 = std::array::from_fn(|k| p.q2[k] - p.q1[k]);
         Self {
             p,
             q12,
@@ -210,8 +221,6 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
     let (mut lo, mut hi, mut t) = (0.0, 1.0, sb / (sa + sb));
     let mut iterations = 0;
     let mut stop = Stop::MaxIterations;
-    // φ″ at the last iterate, for g′ in the polish.
-    let mut curvature = 0.0;
     while iterations < MAX_ITERATIONS {
         iterations += 1;
         let [d1, d2, d3] = rational.log_derivatives(t);
@@ -226,11 +235,12 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
             hi = t;
         }
         // φ = ln f is concave: φ″ < 0 unless rounding flattened it.
-        curvature = -d2;
+        let curvature = -d2;
         let halley_denominator = 2.0 * d2 * d2 - d1 * d3;
         let halley = t - 2.0 * d1 * d2 / halley_denominator;
+        let halley_ok = halley_denominator > 0.0 && halley >= lo && halley <= hi;
         let newton = t + d1 / curvature;
-        let next = if halley_denominator > 0.0 && halley >= lo && halley <= hi {
+        let next = if halley_ok {
             halley
         } else if curvature > 0.0 && newton >= lo && newton <= hi {
             newton
@@ -238,8 +248,13 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
             0.5 * (lo + hi)
         };
         // The Newton model's gain in φ, φ′²/(2|φ″|), is the relative gain in f still to
-        // come; below GAIN_TOL the step just computed finishes the job.
-        let converged = d1 == 0.0 || (curvature > 0.0 && d1 * d1 <= 2.0 * GAIN_TOL * curvature);
+        // come. Below GAIN_TOL the step just computed finishes the job; below
+        // HALLEY_FINAL_GAIN so does a Halley step.
+        let gain2 = d1 * d1; // 2 |φ″| × gain
+        let converged = d1 == 0.0
+            || (curvature > 0.0
+                && (gain2 <= 2.0 * GAIN_TOL * curvature
+                    || (halley_ok && gain2 <= 2.0 * HALLEY_FINAL_GAIN * curvature)));
         let stalled = next == t || hi - lo <= f64::EPSILON * hi;
         t = next;
         if converged || stalled {
@@ -250,28 +265,50 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
     if !accurate || stop != Stop::Converged {
         return p.finish(rational.f(t), t, stop, iterations);
     }
-    // Polish: f and the residual g at λ, refined; then the Newton model's step and
-    // gain, with g′ = −f″ = −f (φ″ + φ′²) ≈ f |φ″| from the scalar iteration.
-    let (f, g) = refined(t, &p.r, &p.q1, &p.q2)?;
-    let gp = f * curvature;
-    let (mu2, lambda) = if gp > 0.0 {
+    // Corrector: Newton on the refined residual, bracketed afresh (the predictor's
+    // bracket rests on the rational form's rounding), until the refined gain is below
+    // CORRECTOR_GAIN_TOL. One step is the rule; near λ = 0 or 1 the predictor can be off by a
+    // few per cent and it takes two or three.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let mut lambda = t;
+    for _ in 0..MAX_ITERATIONS {
+        iterations += 1;
+        let (f, g, gp) = refined(lambda, &p.r, &p.q1, &p.q2)?;
+        if !(gp > 0.0) {
+            return p.finish(f, lambda, Stop::Converged, iterations);
+        }
         let step = g / gp;
-        (f + 0.5 * g * step, (t - step).clamp(lo.min(t), hi.max(t)))
-    } else {
-        (f, t)
-    };
-    p.finish(mu2, lambda, stop, iterations)
+        let gain = 0.5 * g * step;
+        if gain <= CORRECTOR_GAIN_TOL * f {
+            let polished = (lambda - step).clamp(lo, hi);
+            return p.finish(f + gain, polished, Stop::Converged, iterations);
+        }
+        if g > 0.0 {
+            hi = lambda;
+        } else {
+            lo = lambda;
+        }
+        let next = lambda - step;
+        lambda = if next > lo && next < hi {
+            next
+        } else {
+            0.5 * (lo + hi)
+        };
+    }
+    let (f, _, _) = refined(lambda, &p.r, &p.q1, &p.q2)?;
+    p.finish(f, lambda, Stop::MaxIterations, iterations)
 }
 
-/// `f(λ)` to a few ulps whatever the conditioning of `Q(λ)`, and the residual
-/// `g(λ) = (2λ−1) rᵀs + λ(1−λ) sᵀ(Q2−Q1)s` from the refined `s`.
+/// `f(λ)` to a few ulps whatever the conditioning of `Q(λ)`, the residual
+/// `g(λ) = (2λ−1) rᵀs + λ(1−λ) sᵀu` from the refined `s` (`u = (Q2−Q1)s`), and
+/// `g′(λ) = 2rᵀs + 2(1−2λ) sᵀu − 2λ(1−λ) uᵀQ⁻¹u` in double.
 ///
 /// `Q(λ)` is formed in double-double (`hi + lo`, exact products); `s₀ = hi⁻¹ r` (LDLᵀ)
 /// is refined against the exact residual `ρ = r − Q s₀` (mixed-precision iterative
 /// refinement), so that `rᵀQ⁻¹r = rᵀs₀ + s₀ᵀρ + e₀ᵀρ` with `e₀ = hi⁻¹ρ` errs by
 /// `O((ε cond Q)²)` instead of `O(ε cond Q)`.
 #[inline(always)]
-fn refined(lambda: f64, r: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<(f64, f64), ContactError> {
+fn refined(lambda: f64, r: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<(f64, f64, f64), ContactError> {
     let m = 1.0 - lambda;
     let mut hi = [0.0; 6];
     let mut lo = [0.0; 6];
@@ -309,10 +346,56 @@ fn refined(lambda: f64, r: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<(f64, f64), Co
     f.add_prod(p, rs_hi);
     f.lo += p * rs_lo + pe * rs_hi;
     let s = [s0[0] + e0[0], s0[1] + e0[1], s0[2] + e0[2]];
-    let mut q12 = [0.0; 6];
-    for k in 0..6 {
-        q12[k] = q2[k] - q1[k];
+    let q12: Sym3 = std::array::from_fn(|k| q2[k] - q1[k]);
+    let u = sym_mul(&q12, &s);
+    let su = dot(&s, &u);
+    let g = (2.0 * lambda - 1.0) * rs_hi + p * su;
+    let gp = 2.0 * rs_hi + 2.0 * (1.0 - 2.0 * lambda) * su - 2.0 * p * ldl.quadratic_form(&u);
+    Ok((f.value(), g, gp))
+}
+
+#[cfg(test)]
+mod timing {
+    use super::*;
+    use std::hint::black_box;
+
+    /// Rough split of the cost of `contact_function` (run with `--ignored --nocapture`).
+    #[test]
+    #[ignore]
+    fn split_of_the_cost() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/data/contact_typical.csv"
+        );
+        let t = crate::io::cases::CaseTable::read(std::fs::File::open(path).unwrap()).unwrap();
+        let cases: Vec<_> = (0..t.rows.len()).map(|i| t.case(i).unwrap()).collect();
+        let time = |name: &str, f: &dyn Fn(&crate::io::cases::Case) -> f64| {
+            let mut best = f64::MAX;
+            for _ in 0..200 {
+                let s = std::time::Instant::now();
+                for c in &cases {
+                    black_box(f(black_box(c)));
+                }
+                best = best.min(s.elapsed().as_nanos() as f64 / cases.len() as f64);
+            }
+            println!("{name:>12}: {best:6.1} ns");
+        };
+        time("prepare", &|c| {
+            Prepared::new(&c.r12, &c.q1, &c.q2).unwrap().r[0]
+        });
+        time("+rational", &|c| {
+            let p = Prepared::new(&c.r12, &c.q1, &c.q2).unwrap();
+            let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
+            Rational::new(&p.r, &p.q1, &p.q2, [p.l1.det(), p.l2.det(), a, b]).f(0.5)
+        });
+        time("fast", &|c| {
+            contact_function_fast(&c.r12, &c.q1, &c.q2).unwrap().mu2
+        });
+        time("refined", &|c| {
+            refined(0.4, &c.r12, &c.q1, &c.q2).unwrap().0
+        });
+        time("accurate", &|c| {
+            contact_function(&c.r12, &c.q1, &c.q2).unwrap().mu2
+        });
     }
-    let su = dot(&s, &sym_mul(&q12, &s));
-    Ok((f.value(), (2.0 * lambda - 1.0) * rs_hi + p * su))
 }

@@ -5,6 +5,7 @@
 //! underflows, and the result is scaled back.
 
 use super::ldl::Ldl;
+use super::prepared::PreparedEllipsoid;
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
 
 /// Inputs whose largest |r| and all diagonal entries of Q lie within
@@ -40,6 +41,33 @@ impl Prepared {
             return Self::factor(*r12, *q1, *q2, 0);
         }
         Self::rescaled(r12, q1, q2, qmax, rmax)
+    }
+
+    /// A pair of prepared shapes as it stands, or `None` if `r12` is not finite or any
+    /// number is outside the range where no rescaling is needed.
+    #[inline(always)]
+    pub fn with_factors(
+        r12: &Vec3,
+        e1: &PreparedEllipsoid,
+        e2: &PreparedEllipsoid,
+    ) -> Option<Self> {
+        let (q1, q2) = (e1.q(), e2.q());
+        let qmax = q1[0].max(q1[3]).max(q1[5]).max(q2[0]).max(q2[3]).max(q2[5]);
+        let qmin = q1[0].min(q1[3]).min(q1[5]).min(q2[0]).min(q2[3]).min(q2[5]);
+        let rmax = r12[0].abs().max(r12[1].abs()).max(r12[2].abs());
+        let in_range = |x: f64| x >= pow2(-SAFE_EXP) && x <= pow2(SAFE_EXP);
+        // `max` skips NaN, so r12 is checked on its own.
+        let finite = r12.iter().all(|x| x.is_finite());
+        (finite && in_range(qmax) && in_range(qmin) && (rmax == 0.0 || in_range(rmax))).then_some(
+            Self {
+                r: *r12,
+                q1: *q1,
+                q2: *q2,
+                l1: e1.ldl,
+                l2: e2.ldl,
+                mu2_exp: 0,
+            },
+        )
     }
 
     #[cold]
@@ -121,6 +149,54 @@ fn factor(q: &Sym3, what: &'static str) -> Result<Ldl, ContactError> {
     })
 }
 
+/// Checks that `r12`, `q1`, `q2` are finite and that `q1`, `q2` are positive definite, by
+/// the crate's LDLᵀ rule ([`super::MIN_RELATIVE_PIVOT`]).
+pub(crate) fn validate(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<(), ContactError> {
+    for (what, x) in [("r12", &r12[..]), ("q1", &q1[..]), ("q2", &q2[..])] {
+        if let Some(index) = x.iter().position(|v| !v.is_finite()) {
+            return Err(ContactError::NotFinite {
+                what,
+                index,
+                value: x[index],
+            });
+        }
+    }
+    for (what, q) in [("q1", q1), ("q2", q2)] {
+        Ldl::factor(q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
+            what,
+            pivot,
+            value,
+        })?;
+    }
+    Ok(())
+}
+
+/// Inputs of the polynomial methods (rational form, Wang) whose largest diagonal entry
+/// of `Q` and largest `|r12_i|` lie in `[2^-POLY_SAFE_EXP, 2^POLY_SAFE_EXP]` are used as
+/// they are: the coefficients of `c(λ)` (degree 2 in `r`, 5 in `Q`) then stay within
+/// `2^±700`. Others are rescaled by powers of two.
+pub(crate) const POLY_SAFE_EXP: i32 = 100;
+
+/// The same pair seen at scale `1/σ`, `σ = 2^j`: `r → r/σ`, `Q → Q/σ²`; returns it and `j`.
+/// Unless the largest diagonal entry of `Q1`, `Q2` is within [`POLY_SAFE_EXP`] (then `σ = 1`),
+/// `σ` brings it into `[1, 4)`. Exact (powers of two), it keeps determinants away from
+/// overflow and underflow; separation and μ² are unchanged.
+pub(crate) fn rescale(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> (Vec3, Sym3, Sym3, i32) {
+    let q_max = [q1[0], q1[3], q1[5], q2[0], q2[3], q2[5]]
+        .into_iter()
+        .fold(0.0, f64::max);
+    if in_safe_range(q_max) {
+        return (*r12, *q1, *q2, 0);
+    }
+    let j = (q_max.log2().floor() as i32).div_euclid(2);
+    let shrink = |q: &Sym3| q.map(|x| ldexp(x, -2 * j));
+    (r12.map(|x| ldexp(x, -j)), shrink(q1), shrink(q2), j)
+}
+
+pub(crate) fn in_safe_range(x: f64) -> bool {
+    (ldexp(1.0, -POLY_SAFE_EXP)..=ldexp(1.0, POLY_SAFE_EXP)).contains(&x)
+}
+
 #[inline(always)]
 fn check_finite(what: &'static str, values: &[f64]) -> Result<(), ContactError> {
     if values.iter().all(|x| x.is_finite()) {
@@ -189,6 +265,7 @@ mod tests {
     #[test]
     fn ldexp_reaches_across_the_whole_range() {
         assert_eq!(ldexp(1.0, -1074), 5e-324);
-        assert_eq!(ldexp(ldexp(3.0, 1500), -1500), 3.0);
+        assert_eq!(ldexp(ldexp(3.0, 1000), -1000), 3.0);
+        assert_eq!(ldexp(ldexp(3.0, -1060), 1060), 3.0); // subnormal, still exact
     }
 }

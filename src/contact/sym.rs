@@ -1,0 +1,83 @@
+//! Small algebra of symmetric 3×3 matrices stored as their upper triangle.
+
+use super::{Sym3, Vec3};
+
+/// `Q u` for a symmetric `Q`.
+#[inline(always)]
+pub(crate) fn sym_mul(q: &Sym3, u: &Vec3) -> Vec3 {
+    [
+        q[0] * u[0] + q[1] * u[1] + q[2] * u[2],
+        q[1] * u[0] + q[3] * u[1] + q[4] * u[2],
+        q[2] * u[0] + q[4] * u[1] + q[5] * u[2],
+    ]
+}
+
+#[inline(always)]
+pub(crate) fn dot(a: &Vec3, b: &Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Coefficients of the homogeneous forms `a(s, t) = xᵀ adj(sM0 + tM1) x = Σ a_k s^{2−k} t^k`
+/// and `b(s, t) = det(sM0 + tM1) = Σ b_k s^{3−k} t^k` for symmetric `M0`, `M1`.
+///
+/// `det(sM0 + tM1) = s³ det M0 + s²t⟨adj M0, M1⟩ + st²⟨M0, adj M1⟩ + t³ det M1` and
+/// `adj(sM0 + tM1) = s² adj M0 + st adj(M0, M1) + t² adj M1`, with `⟨·,·⟩` the Frobenius
+/// product and `adj(·,·)` the polarised adjugate (each 2×2 minor differentiated).
+/// `s = 1, t = λ` gives monomial coefficients; `s = 1 − λ, t = λ` the pencil between.
+pub(crate) fn pencil_coefficients(m0: &Sym3, m1: &Sym3, x: &Vec3) -> ([f64; 3], [f64; 4]) {
+    let (adj0, adj1) = (adjugate(m0), adjugate(m1));
+    let a = [
+        quadratic_form(&adj0, x),
+        quadratic_form(&polarised_adjugate(m0, m1), x),
+        quadratic_form(&adj1, x),
+    ];
+    let b = [
+        det(m0, &adj0),
+        frobenius(&adj0, m1),
+        frobenius(m0, &adj1),
+        det(m1, &adj1),
+    ];
+    (a, b)
+}
+
+/// Adjugate of a symmetric matrix, itself symmetric.
+pub(crate) fn adjugate(m: &Sym3) -> Sym3 {
+    [
+        m[3] * m[5] - m[4] * m[4],
+        m[2] * m[4] - m[1] * m[5],
+        m[1] * m[4] - m[2] * m[3],
+        m[0] * m[5] - m[2] * m[2],
+        m[1] * m[2] - m[0] * m[4],
+        m[0] * m[3] - m[1] * m[1],
+    ]
+}
+
+/// The polarised adjugate: the coefficient of `λ` in `adj(A + λB)`.
+pub(crate) fn polarised_adjugate(a: &Sym3, b: &Sym3) -> Sym3 {
+    [
+        a[3] * b[5] + b[3] * a[5] - 2.0 * a[4] * b[4],
+        a[2] * b[4] + b[2] * a[4] - a[1] * b[5] - b[1] * a[5],
+        a[1] * b[4] + b[1] * a[4] - a[2] * b[3] - b[2] * a[3],
+        a[0] * b[5] + b[0] * a[5] - 2.0 * a[2] * b[2],
+        a[1] * b[2] + b[1] * a[2] - a[0] * b[4] - b[0] * a[4],
+        a[0] * b[3] + b[0] * a[3] - 2.0 * a[1] * b[1],
+    ]
+}
+
+/// `det m`, by cofactor expansion along the first row, given `adj m`.
+pub(crate) fn det(m: &Sym3, adj: &Sym3) -> f64 {
+    m[0] * adj[0] + m[1] * adj[1] + m[2] * adj[2]
+}
+
+/// Frobenius product `⟨s, t⟩ = tr(s t)` of two symmetric matrices.
+pub(crate) fn frobenius(s: &Sym3, t: &Sym3) -> f64 {
+    s[0] * t[0] + s[3] * t[3] + s[5] * t[5] + 2.0 * (s[1] * t[1] + s[2] * t[2] + s[4] * t[4])
+}
+
+/// `xᵀ s x` for a symmetric `s`.
+pub(crate) fn quadratic_form(s: &Sym3, x: &Vec3) -> f64 {
+    s[0] * x[0] * x[0]
+        + s[3] * x[1] * x[1]
+        + s[5] * x[2] * x[2]
+        + 2.0 * (s[1] * x[0] * x[1] + s[2] * x[0] * x[2] + s[4] * x[1] * x[2])
+}
