@@ -24,6 +24,7 @@ pub(crate) fn dot(a: &Vec3, b: &Vec3) -> f64 {
 /// `adj(sM0 + tM1) = s² adj M0 + st adj(M0, M1) + t² adj M1`, with `⟨·,·⟩` the Frobenius
 /// product and `adj(·,·)` the polarised adjugate (each 2×2 minor differentiated).
 /// `s = 1, t = λ` gives monomial coefficients; `s = 1 − λ, t = λ` the pencil between.
+#[inline(always)]
 pub(crate) fn pencil_coefficients(m0: &Sym3, m1: &Sym3, x: &Vec3) -> ([f64; 3], [f64; 4]) {
     let (adj0, adj1) = (adjugate(m0), adjugate(m1));
     let a = [
@@ -41,6 +42,7 @@ pub(crate) fn pencil_coefficients(m0: &Sym3, m1: &Sym3, x: &Vec3) -> ([f64; 3], 
 }
 
 /// Adjugate of a symmetric matrix, itself symmetric.
+#[inline(always)]
 pub(crate) fn adjugate(m: &Sym3) -> Sym3 {
     [
         m[3] * m[5] - m[4] * m[4],
@@ -53,6 +55,7 @@ pub(crate) fn adjugate(m: &Sym3) -> Sym3 {
 }
 
 /// The polarised adjugate: the coefficient of `λ` in `adj(A + λB)`.
+#[inline(always)]
 pub(crate) fn polarised_adjugate(a: &Sym3, b: &Sym3) -> Sym3 {
     [
         a[3] * b[5] + b[3] * a[5] - 2.0 * a[4] * b[4],
@@ -65,16 +68,19 @@ pub(crate) fn polarised_adjugate(a: &Sym3, b: &Sym3) -> Sym3 {
 }
 
 /// `det m`, by cofactor expansion along the first row, given `adj m`.
+#[inline(always)]
 pub(crate) fn det(m: &Sym3, adj: &Sym3) -> f64 {
     m[0] * adj[0] + m[1] * adj[1] + m[2] * adj[2]
 }
 
 /// Frobenius product `⟨s, t⟩ = tr(s t)` of two symmetric matrices.
+#[inline(always)]
 pub(crate) fn frobenius(s: &Sym3, t: &Sym3) -> f64 {
     s[0] * t[0] + s[3] * t[3] + s[5] * t[5] + 2.0 * (s[1] * t[1] + s[2] * t[2] + s[4] * t[4])
 }
 
 /// `xᵀ s x` for a symmetric `s`.
+#[inline(always)]
 pub(crate) fn quadratic_form(s: &Sym3, x: &Vec3) -> f64 {
     s[0] * x[0] * x[0]
         + s[3] * x[1] * x[1]
