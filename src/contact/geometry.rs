@@ -1,7 +1,7 @@
 //! Where and along which normal two ellipsoids touch once scaled by μ, and how far apart
 //! they are.
 
-use super::ldl::Ldl;
+use super::perram_wertheim::factor_at;
 use super::sym::{dot, sym_mul};
 use super::{contact_function, ContactError, Sym3, Vec3};
 
@@ -36,22 +36,14 @@ pub fn contact_geometry(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<ContactGeome
         return Err(ContactError::CoincidentCentres);
     }
     let (lambda, m) = (c.lambda, 1.0 - c.lambda);
-    let mut q = [0.0; 6];
-    for k in 0..6 {
-        q[k] = m * q1[k] + lambda * q2[k];
-    }
-    // Q(λ) is a convex combination of two matrices that contact_function factored.
-    let ldl = Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
-        what: "(1−λ)q1 + λq2",
-        pivot,
-        value,
-    })?;
+    let (_, ldl) = factor_at(lambda, q1, q2)?;
     let s = ldl.solve(r12);
     let q1s = sym_mul(q1, &s);
     let point = q1s.map(|x| m * x);
     let norm = dot(&s, &s).sqrt();
     let normal = s.map(|x| x / norm);
-    let gap = d * (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal) / d;
+    // d (1 − 1/μ) r̂·n̂, with d r̂ = r12.
+    let gap = (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal);
     if !(gap.is_finite() && norm.is_finite() && norm > 0.0) || point.iter().any(|x| !x.is_finite())
     {
         return Err(ContactError::Overflow {

@@ -61,15 +61,7 @@ impl Eval {
         q12: &Sym3,
     ) -> Result<Self, ContactError> {
         let m = 1.0 - lambda;
-        let mut q = [0.0; 6];
-        for k in 0..6 {
-            q[k] = m * q1[k] + lambda * q2[k];
-        }
-        let ldl = Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
-            what: "(1−λ)q1 + λq2",
-            pivot,
-            value,
-        })?;
+        let (q, ldl) = factor_at(lambda, q1, q2)?;
         let s = ldl.solve(r);
         let rs = dot(r, &s);
         let u = sym_mul(q12, &s);
@@ -102,6 +94,22 @@ impl Eval {
     pub fn condition_bound(&self) -> f64 {
         condition_bound(&self.q, &self.ldl)
     }
+}
+
+/// `Q(λ) = (1−λ)Q1 + λQ2` in double precision, and its factors.
+///
+/// A convex combination of two positive-definite matrices is positive definite, so
+/// failure here means rounding at the edge of [`MIN_RELATIVE_PIVOT`](super::MIN_RELATIVE_PIVOT).
+#[inline(always)]
+pub(crate) fn factor_at(lambda: f64, q1: &Sym3, q2: &Sym3) -> Result<(Sym3, Ldl), ContactError> {
+    let m = 1.0 - lambda;
+    let q: Sym3 = std::array::from_fn(|k| m * q1[k] + lambda * q2[k]);
+    let ldl = Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
+        what: "(1−λ)q1 + λq2",
+        pivot,
+        value,
+    })?;
+    Ok((q, ldl))
 }
 
 /// `tr · σ₂ / det` of a factored matrix; see [`Eval::condition_bound`].
