@@ -60,7 +60,10 @@ impl Rational {
         let db = 3.0 * (b3 * t * t - b0 * s * s) + b1 * s * (s - 2.0 * t) + b2 * t * (2.0 * s - t);
         let ddb = 6.0 * (b0 * s + b3 * t) + b1 * (2.0 * t - 4.0 * s) + b2 * (2.0 * s - 4.0 * t);
         let dddb = 6.0 * (b1 - b0 - b2 + b3);
-        let (it, is, ia, ib) = (1.0 / t, 1.0 / s, 1.0 / a, 1.0 / b);
+        // 1/t = s/(ts) and 1/s = t/(ts): one division for both. (Not so for a and b,
+        // whose product may overflow.)
+        let its = 1.0 / (t * s);
+        let (it, is, ia, ib) = (s * its, t * its, 1.0 / a, 1.0 / b);
         let (ra, raa) = (da * ia, dda * ia);
         let (rb, rbb, rbbb) = (db * ib, ddb * ib, dddb * ib);
         let d1 = it - is + ra - rb;
