@@ -1,0 +1,143 @@
+//! The scene file as written: a serde mirror that rejects unknown keys and keeps the
+//! span of every value for error messages. Only `validate` reads it.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// Optional spanned value.
+type Opt<T> = Option<Spanned<T>>;
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawScene {
+    pub seed: Opt<u64>,
+    #[serde(rename = "box")]
+    pub domain: Spanned<RawBox>,
+    pub grains: Opt<u64>,
+    pub target_fraction: Opt<f64>,
+    #[serde(default)]
+    pub phase: Vec<Spanned<RawPhase>>,
+    pub packing: Opt<RawPacking>,
+    pub output: Opt<RawOutput>,
+}
+
+/// `[box]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawBox {
+    pub size: Spanned<[f64; 3]>,
+    pub boundary: Opt<RawBoundary>,
+}
+
+/// `box.boundary`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum RawBoundary {
+    Periodic,
+    Reflecting,
+}
+
+/// One `[[phase]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawPhase {
+    pub name: Opt<String>,
+    pub share: Opt<f64>,
+    pub size: Spanned<RawDistribution>,
+    pub aspect_ratio: Opt<RawDistribution>,
+    pub orientation: Opt<RawOrientation>,
+}
+
+/// `[phase.size]` and `[phase.aspect_ratio]`: every family's keys, each optional;
+/// validation rejects the keys that do not belong to the chosen family.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawDistribution {
+    pub distribution: Spanned<RawFamily>,
+    pub value: Opt<f64>,
+    pub mean: Opt<f64>,
+    pub std: Opt<f64>,
+    pub sigma: Opt<f64>,
+    pub scale: Opt<f64>,
+    pub loc: Opt<f64>,
+    pub min: Opt<f64>,
+    pub max: Opt<f64>,
+}
+
+impl RawDistribution {
+    /// Every parameter key with its value, in the order of the docs.
+    pub fn params(&self) -> [(&'static str, Option<&Spanned<f64>>); 8] {
+        [
+            ("value", self.value.as_ref()),
+            ("mean", self.mean.as_ref()),
+            ("std", self.std.as_ref()),
+            ("sigma", self.sigma.as_ref()),
+            ("scale", self.scale.as_ref()),
+            ("loc", self.loc.as_ref()),
+            ("min", self.min.as_ref()),
+            ("max", self.max.as_ref()),
+        ]
+    }
+
+    /// The parameter called `name`, if given.
+    pub fn param(&self, name: &str) -> Option<&Spanned<f64>> {
+        self.params()
+            .into_iter()
+            .find(|(n, _)| *n == name)
+            .and_then(|(_, v)| v)
+    }
+}
+
+/// `distribution = "..."`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum RawFamily {
+    Constant,
+    Uniform,
+    Normal,
+    LogNormal,
+}
+
+/// `[phase.orientation]`: every kind's keys, each optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawOrientation {
+    pub kind: Spanned<RawKind>,
+    pub quaternion: Opt<[f64; 4]>,
+    /// `"x"`, `"y"`, `"z"` or `[x, y, z]`: checked by validation.
+    pub axis: Opt<toml::Value>,
+    pub mean: Opt<f64>,
+    pub kappa: Opt<f64>,
+    pub min: Opt<f64>,
+    pub max: Opt<f64>,
+}
+
+/// `orientation.kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum RawKind {
+    Random,
+    Fixed,
+    Aligned,
+    Tilt,
+}
+
+/// `[packing]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawPacking {
+    pub max_steps: Opt<u64>,
+    pub growth_rate: Opt<f64>,
+    pub tolerance: Opt<f64>,
+    pub rotation: Opt<bool>,
+}
+
+/// `[output]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawOutput {
+    pub dir: Opt<String>,
+    pub grains_csv: Opt<bool>,
+    pub summary_json: Opt<bool>,
+}

@@ -1,0 +1,134 @@
+//! Drawing grains from a scene: which phase, what size, what shape, which way round.
+
+use super::error::SampleError;
+use super::{GrainCount, Phase, Scene, MAX_GRAINS};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::f64::consts::PI;
+
+/// One grain as drawn, before packing: its target shape and orientation.
+///
+/// The grain is a spheroid with semi-axes `[a1, a2, a3]`, `a2 = a3`, of the same volume
+/// as the sphere of diameter `d`: with aspect ratio `α = a1/a2`,
+/// `a2 = a3 = (d/2) α^{−1/3}` and `a1 = α a2`, so `a1 a2 a3 = (d/2)³`. `α > 1` is prolate
+/// (a needle along the first axis), `α < 1` oblate (a platelet whose normal is the
+/// first axis). Semi-axis `k` lies along column `k` of the rotation of `quaternion`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GrainSpec {
+    /// Index of the grain's phase in [`Scene::phases`].
+    pub phase: usize,
+    /// Target semi-axes `[a1, a2, a3]`.
+    pub semi_axes: [f64; 3],
+    /// Orientation `[w, x, y, z]` (Hamilton, unit norm, `w ≥ 0` for drawn ones).
+    pub quaternion: [f64; 4],
+    /// Equivalent-sphere diameter `d`.
+    pub diameter: f64,
+    /// Aspect ratio `α = a1/a2`.
+    pub aspect_ratio: f64,
+    /// Tilt angle `θ` in radians, for phases with a tilt orientation.
+    pub tilt: Option<f64>,
+}
+
+impl GrainSpec {
+    /// A grain of diameter `d` and aspect ratio `α`, oriented by `quaternion`.
+    pub fn new(
+        phase: usize,
+        diameter: f64,
+        aspect_ratio: f64,
+        quaternion: [f64; 4],
+        tilt: Option<f64>,
+    ) -> Self {
+        let a2 = 0.5 * diameter / aspect_ratio.cbrt();
+        Self {
+            phase,
+            semi_axes: [aspect_ratio * a2, a2, a2],
+            quaternion,
+            diameter,
+            aspect_ratio,
+            tilt,
+        }
+    }
+
+    /// Target volume `π d³/6`.
+    pub fn volume(&self) -> f64 {
+        PI / 6.0 * self.diameter.powi(3)
+    }
+}
+
+impl Phase {
+    /// Draws one grain of this phase (`index` is the phase's index): diameter, then
+    /// aspect ratio, then orientation.
+    pub fn sample_grain<R: Rng + ?Sized>(
+        &self,
+        index: usize,
+        rng: &mut R,
+    ) -> Result<GrainSpec, SampleError> {
+        let rejected = |quantity| SampleError::TooManyRejections {
+            phase: index,
+            name: self.name.clone(),
+            quantity,
+            draws: super::MAX_DRAWS,
+        };
+        let d = self
+            .size
+            .sample(rng)
+            .ok_or_else(|| rejected("equivalent diameter"))?;
+        let alpha = self
+            .aspect_ratio
+            .sample(rng)
+            .ok_or_else(|| rejected("aspect ratio"))?;
+        let (q, tilt) = self
+            .orientation
+            .sample(rng)
+            .ok_or_else(|| rejected("tilt angle"))?;
+        Ok(GrainSpec::new(index, d, alpha, q, tilt))
+    }
+}
+
+impl Scene {
+    /// The scene's random generator: ChaCha8 seeded with [`Scene::seed`], whose stream
+    /// is fixed by its algorithm, so a seed gives the same grains on every machine and
+    /// with any number of threads.
+    pub fn rng(&self) -> ChaCha8Rng {
+        ChaCha8Rng::seed_from_u64(self.seed)
+    }
+
+    /// Draws the scene's grains, one after another from `rng`.
+    ///
+    /// Each grain comes from the phase furthest below its volume share (the least
+    /// `volume drawn / share`, the first phase on ties), so each phase's volume stays
+    /// within one grain of its share. [`GrainCount::Exactly`] stops after that many
+    /// grains; [`GrainCount::Fraction`] as soon as the total volume reaches `φ·V`.
+    pub fn sample_grains<R: Rng + ?Sized>(
+        &self,
+        rng: &mut R,
+    ) -> Result<Vec<GrainSpec>, SampleError> {
+        let done = |count: usize, volume: f64| match self.count {
+            GrainCount::Exactly(n) => count >= n,
+            GrainCount::Fraction(f) => volume >= f * self.domain.volume(),
+        };
+        // Validation bounds the expected count by MAX_GRAINS; twice that is never reached
+        // by chance, but a loop without a bound is not written.
+        let limit = 2 * MAX_GRAINS;
+        let mut grains =
+            Vec::with_capacity(self.expected_count().ceil().min(MAX_GRAINS as f64) as usize);
+        let mut drawn = vec![0.0; self.phases.len()];
+        let mut total = 0.0;
+        while !done(grains.len(), total) {
+            if grains.len() >= limit {
+                return Err(SampleError::TooManyGrains { limit });
+            }
+            let mut p = 0;
+            for (i, phase) in self.phases.iter().enumerate() {
+                if drawn[i] / phase.share < drawn[p] / self.phases[p].share {
+                    p = i;
+                }
+            }
+            let grain = self.phases[p].sample_grain(p, rng)?;
+            drawn[p] += grain.volume();
+            total += grain.volume();
+            grains.push(grain);
+        }
+        Ok(grains)
+    }
+}

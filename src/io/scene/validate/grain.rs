@@ -1,0 +1,231 @@
+//! A phase's grain statistics: size and aspect-ratio distributions, and orientation.
+
+use crate::contact::QUATERNION_NORM_TOL;
+use crate::io::scene::distribution::{Distribution, Invalid};
+use crate::io::scene::error::{SceneError, Source};
+use crate::io::scene::orientation::{Axis, Orientation};
+use crate::io::scene::raw::{RawDistribution, RawFamily, RawKind, RawOrientation};
+use crate::io::scene::von_mises::VonMises;
+use std::f64::consts::PI;
+use std::ops::Range;
+use toml::Spanned;
+
+/// `[phase.size]` or `[phase.aspect_ratio]` (at key path `key`).
+pub(super) fn distribution(
+    src: &Source,
+    key: &str,
+    raw: &Spanned<RawDistribution>,
+) -> Result<Distribution, SceneError> {
+    let r = raw.get_ref();
+    let (family, takes): (_, &[&str]) = match *r.distribution.get_ref() {
+        RawFamily::Constant => ("constant", &["value"]),
+        RawFamily::Uniform => ("uniform", &["min", "max"]),
+        RawFamily::Normal => ("normal", &["mean", "std", "min", "max"]),
+        RawFamily::LogNormal => ("lognormal", &["sigma", "scale", "loc", "min", "max"]),
+    };
+    for (name, value) in r.params() {
+        if let (Some(v), false) = (value, takes.contains(&name)) {
+            return Err(src.invalid_at(
+                format!("{key}.{name}"),
+                v,
+                format!(
+                    "does not apply to distribution = \"{family}\", which takes {}",
+                    takes.join(", ")
+                ),
+            ));
+        }
+    }
+    let need = |name: &str| {
+        r.param(name).map(|v| *v.get_ref()).ok_or_else(|| {
+            src.missing(
+                format!("{key}.{name}"),
+                raw.span(),
+                format!("distribution = \"{family}\" needs {}", takes.join(", ")),
+            )
+        })
+    };
+    let d = match *r.distribution.get_ref() {
+        RawFamily::Constant => Distribution::Constant {
+            value: need("value")?,
+        },
+        RawFamily::Uniform => Distribution::Uniform {
+            min: need("min")?,
+            max: need("max")?,
+        },
+        RawFamily::Normal => Distribution::Normal {
+            mean: need("mean")?,
+            std: need("std")?,
+            min: need("min")?,
+            max: need("max")?,
+        },
+        RawFamily::LogNormal => Distribution::LogNormal {
+            sigma: need("sigma")?,
+            scale: need("scale")?,
+            loc: r.loc.as_ref().map_or(0.0, |v| *v.get_ref()),
+            min: need("min")?,
+            max: need("max")?,
+        },
+    };
+    d.check().map_err(|Invalid { param, reason }| {
+        let at = r.param(param).map_or(raw.span(), |v| v.span());
+        src.invalid(format!("{key}.{param}"), at, reason)
+    })?;
+    Ok(d)
+}
+
+/// `[phase.orientation]` (at key path `key`).
+pub(super) fn orientation(
+    src: &Source,
+    key: &str,
+    raw: &Spanned<RawOrientation>,
+) -> Result<Orientation, SceneError> {
+    let o = raw.get_ref();
+    let kind = *o.kind.get_ref();
+    let given: [(&str, Option<Range<usize>>); 6] = [
+        ("quaternion", o.quaternion.as_ref().map(Spanned::span)),
+        ("axis", o.axis.as_ref().map(Spanned::span)),
+        ("mean", o.mean.as_ref().map(Spanned::span)),
+        ("kappa", o.kappa.as_ref().map(Spanned::span)),
+        ("min", o.min.as_ref().map(Spanned::span)),
+        ("max", o.max.as_ref().map(Spanned::span)),
+    ];
+    let (name, takes): (_, &[&str]) = match kind {
+        RawKind::Random => ("random", &[]),
+        RawKind::Fixed => ("fixed", &["quaternion"]),
+        RawKind::Aligned => ("aligned", &["axis"]),
+        RawKind::Tilt => ("tilt", &["axis", "mean", "kappa", "min", "max"]),
+    };
+    for (param, span) in given {
+        if let (Some(span), false) = (span, takes.contains(&param)) {
+            let takes = if takes.is_empty() {
+                "no other key".to_owned()
+            } else {
+                takes.join(", ")
+            };
+            return Err(src.invalid(
+                format!("{key}.{param}"),
+                span,
+                format!("does not apply to kind = \"{name}\", which takes {takes}"),
+            ));
+        }
+    }
+    match kind {
+        RawKind::Random => Ok(Orientation::Random),
+        RawKind::Fixed => {
+            let q = o.quaternion.as_ref().ok_or_else(|| {
+                src.missing(
+                    format!("{key}.quaternion"),
+                    raw.span(),
+                    "kind = \"fixed\" needs quaternion = [w, x, y, z]",
+                )
+            })?;
+            let norm = q.get_ref().iter().map(|v| v * v).sum::<f64>().sqrt();
+            if !((norm - 1.0).abs() <= QUATERNION_NORM_TOL) {
+                return Err(src.invalid_at(
+                    format!("{key}.quaternion"),
+                    q,
+                    format!(
+                        "must be a unit quaternion [w, x, y, z] (norm {norm}, tolerance \
+                         {QUATERNION_NORM_TOL:e})"
+                    ),
+                ));
+            }
+            Ok(Orientation::Fixed {
+                quaternion: q.get_ref().map(|v| v / norm),
+            })
+        }
+        RawKind::Aligned => {
+            let axis = match &o.axis {
+                None => Axis::Z.unit(),
+                Some(a) => direction(src, &format!("{key}.axis"), a)?,
+            };
+            Ok(Orientation::Aligned { axis })
+        }
+        RawKind::Tilt => tilt(src, key, raw),
+    }
+}
+
+/// The keys of `kind = "tilt"`, already checked to be the only ones given.
+fn tilt(src: &Source, key: &str, raw: &Spanned<RawOrientation>) -> Result<Orientation, SceneError> {
+    let o = raw.get_ref();
+    let axis = match &o.axis {
+        None => Axis::Z,
+        Some(a) => named_axis(a.get_ref()).ok_or_else(|| {
+            src.invalid_at(
+                format!("{key}.axis"),
+                a,
+                "the tilt axis must be \"x\", \"y\" or \"z\"",
+            )
+        })?,
+    };
+    let kappa = o.kappa.as_ref().ok_or_else(|| {
+        src.missing(
+            format!("{key}.kappa"),
+            raw.span(),
+            "kind = \"tilt\" needs kappa (0 for uniform)",
+        )
+    })?;
+    let radians = |v: &Option<Spanned<f64>>| v.as_ref().map(|v| v.get_ref().to_radians());
+    let mean = radians(&o.mean).unwrap_or(0.0);
+    let angle = VonMises {
+        mean,
+        kappa: *kappa.get_ref(),
+        min: radians(&o.min).unwrap_or(mean - PI),
+        max: radians(&o.max).unwrap_or(mean + PI),
+    };
+    angle.check().map_err(|Invalid { param, reason }| {
+        let at = match param {
+            "mean" => o.mean.as_ref(),
+            "kappa" => Some(kappa),
+            "min" => o.min.as_ref().or(o.max.as_ref()),
+            _ => o.max.as_ref().or(o.min.as_ref()),
+        };
+        src.invalid(
+            format!("{key}.{param}"),
+            at.map_or(raw.span(), Spanned::span),
+            reason,
+        )
+    })?;
+    Ok(Orientation::Tilt { axis, angle })
+}
+
+fn named_axis(value: &toml::Value) -> Option<Axis> {
+    match value.as_str()? {
+        "x" => Some(Axis::X),
+        "y" => Some(Axis::Y),
+        "z" => Some(Axis::Z),
+        _ => None,
+    }
+}
+
+/// `"x"`, `"y"`, `"z"` or a non-zero `[x, y, z]`, as a unit vector.
+fn direction(src: &Source, key: &str, raw: &Spanned<toml::Value>) -> Result<[f64; 3], SceneError> {
+    if let Some(axis) = named_axis(raw.get_ref()) {
+        return Ok(axis.unit());
+    }
+    let bad = || {
+        src.invalid_at(
+            key,
+            raw,
+            "must be \"x\", \"y\", \"z\" or a non-zero vector [x, y, z]",
+        )
+    };
+    let items = raw
+        .get_ref()
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or_else(bad)?;
+    let mut v = [0.0; 3];
+    for (slot, item) in v.iter_mut().zip(items) {
+        *slot = item
+            .as_float()
+            .or_else(|| item.as_integer().map(|i| i as f64))
+            .filter(|x| x.is_finite())
+            .ok_or_else(bad)?;
+    }
+    let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(norm > 0.0 && norm.is_finite()) {
+        return Err(bad());
+    }
+    Ok(v.map(|x| x / norm))
+}

@@ -1,0 +1,245 @@
+//! Raw scene → [`Scene`]: every value checked, every default filled in, every error
+//! located.
+
+mod grain;
+
+use super::distribution::Distribution;
+use super::error::{SceneError, Source};
+use super::orientation::Orientation;
+use super::raw::{RawBoundary, RawBox, RawOutput, RawPacking, RawPhase, RawScene};
+use super::{
+    mean_grain_volume, Boundary, Domain, GrainCount, OutputSpec, PackingParams, Phase, Scene,
+    MAX_GRAINS, MAX_TARGET_FRACTION,
+};
+use grain::{distribution, orientation};
+use serde::Deserialize;
+use std::collections::HashSet;
+use std::path::PathBuf;
+use toml::de::{DeTable, Deserializer};
+use toml::Spanned;
+
+/// Parses, deserializes and validates a scene file's text.
+pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
+    let src = Source { file, text };
+    let document = DeTable::parse(text).map_err(|e| src.syntax(&e))?;
+    let raw = RawScene::deserialize(Deserializer::from(document.clone()))
+        .map_err(|e| src.shape(&e, document.get_ref()))?;
+
+    let domain = domain(&src, &raw.domain)?;
+    if raw.phase.is_empty() {
+        return Err(src.missing("phase", 0..0, "at least one [[phase]] is needed"));
+    }
+    let mut names = HashSet::new();
+    let mut phases = Vec::with_capacity(raw.phase.len());
+    for (i, p) in raw.phase.iter().enumerate() {
+        let phase = phase(&src, i, p, &domain)?;
+        if !names.insert(phase.name.clone()) {
+            let at = p.get_ref().name.as_ref().map_or(p.span(), |n| n.span());
+            return Err(src.invalid(format!("phase[{i}].name"), at, "two phases have this name"));
+        }
+        phases.push(phase);
+    }
+    let total: f64 = phases.iter().map(|p| p.share).sum();
+    for p in &mut phases {
+        p.share /= total;
+    }
+
+    Ok(Scene {
+        seed: raw.seed.as_ref().map_or(0, |s| *s.get_ref()),
+        count: count(&src, &raw, &domain, &phases)?,
+        domain,
+        phases,
+        packing: packing(&src, raw.packing.as_ref())?,
+        output: output(&src, raw.output.as_ref())?,
+    })
+}
+
+fn domain(src: &Source, raw: &Spanned<RawBox>) -> Result<Domain, SceneError> {
+    let raw = raw.get_ref();
+    let size = *raw.size.get_ref();
+    if !size.iter().all(|l| l.is_finite() && *l > 0.0) {
+        return Err(src.invalid_at(
+            "box.size",
+            &raw.size,
+            "every side must be positive and finite",
+        ));
+    }
+    let boundary = match raw.boundary.as_ref().map(|b| *b.get_ref()) {
+        None | Some(RawBoundary::Periodic) => Boundary::Periodic,
+        Some(RawBoundary::Reflecting) => Boundary::Reflecting,
+    };
+    Ok(Domain { size, boundary })
+}
+
+fn phase(
+    src: &Source,
+    i: usize,
+    raw: &Spanned<RawPhase>,
+    domain: &Domain,
+) -> Result<Phase, SceneError> {
+    let key = format!("phase[{i}]");
+    let p = raw.get_ref();
+    let name = match &p.name {
+        Some(n) if n.get_ref().trim().is_empty() => {
+            return Err(src.invalid_at(format!("{key}.name"), n, "must not be empty"));
+        }
+        Some(n) => n.get_ref().clone(),
+        None => format!("phase{i}"),
+    };
+    let share = match &p.share {
+        None => 1.0,
+        Some(s) if s.get_ref().is_finite() && *s.get_ref() > 0.0 => *s.get_ref(),
+        Some(s) => {
+            return Err(src.invalid_at(format!("{key}.share"), s, "must be positive and finite"))
+        }
+    };
+    let size = distribution(src, &format!("{key}.size"), &p.size)?;
+    let aspect_ratio = match &p.aspect_ratio {
+        None => Distribution::Constant { value: 1.0 },
+        Some(a) => distribution(src, &format!("{key}.aspect_ratio"), a)?,
+    };
+    let orientation = match &p.orientation {
+        None => Orientation::Random,
+        Some(o) => orientation(src, &format!("{key}.orientation"), o)?,
+    };
+    let phase = Phase {
+        name,
+        share,
+        size,
+        aspect_ratio,
+        orientation,
+    };
+
+    let (longest, side) = (phase.max_length(), domain.min_side());
+    if longest >= side {
+        // Blame the size's upper bound; the message names the aspect ratios too.
+        let param = match size {
+            Distribution::Constant { .. } => "value",
+            _ => "max",
+        };
+        let at = p
+            .size
+            .get_ref()
+            .param(param)
+            .map_or(p.size.span(), |v| v.span());
+        let (a_min, a_max) = phase.aspect_ratio.support();
+        return Err(src.invalid(
+            format!("{key}.size.{param}"),
+            at,
+            format!(
+                "the longest grain ({longest} end to end, with aspect ratios in [{a_min}, {a_max}]) \
+                 does not fit in the box, whose shortest side is {side}"
+            ),
+        ));
+    }
+    Ok(phase)
+}
+
+fn count(
+    src: &Source,
+    raw: &RawScene,
+    domain: &Domain,
+    phases: &[Phase],
+) -> Result<GrainCount, SceneError> {
+    let v_grain = mean_grain_volume(phases);
+    let v_box = domain.volume();
+    match (&raw.grains, &raw.target_fraction) {
+        (Some(_), Some(f)) => Err(src.invalid_at(
+            "target_fraction",
+            f,
+            "give either grains or target_fraction, not both",
+        )),
+        (None, None) => {
+            Err(src.missing("grains", 0..0, "give grains (a count) or target_fraction"))
+        }
+        (Some(n), None) => {
+            let count = *n.get_ref();
+            if count == 0 || count > MAX_GRAINS as u64 {
+                return Err(src.invalid_at("grains", n, format!("must lie in [1, {MAX_GRAINS}]")));
+            }
+            let fraction = count as f64 * v_grain / v_box;
+            if fraction > MAX_TARGET_FRACTION {
+                return Err(src.invalid_at(
+                    "grains",
+                    n,
+                    format!(
+                        "that many grains fill an expected {fraction:.3} of the box, beyond the \
+                         densest packing of ellipsoids ({MAX_TARGET_FRACTION})"
+                    ),
+                ));
+            }
+            Ok(GrainCount::Exactly(count as usize))
+        }
+        (None, Some(f)) => {
+            let fraction = *f.get_ref();
+            if !(fraction > 0.0 && fraction <= MAX_TARGET_FRACTION) {
+                return Err(src.invalid_at(
+                    "target_fraction",
+                    f,
+                    format!(
+                        "must lie in (0, {MAX_TARGET_FRACTION}]: {MAX_TARGET_FRACTION} is the densest \
+                         known packing of ellipsoids"
+                    ),
+                ));
+            }
+            let expected = fraction * v_box / v_grain;
+            if expected > MAX_GRAINS as f64 {
+                return Err(src.invalid_at(
+                    "target_fraction",
+                    f,
+                    format!("needs about {expected:.3e} grains, more than the limit {MAX_GRAINS}"),
+                ));
+            }
+            Ok(GrainCount::Fraction(fraction))
+        }
+    }
+}
+
+fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingParams, SceneError> {
+    let mut params = PackingParams::default();
+    let Some(raw) = raw.map(Spanned::get_ref) else {
+        return Ok(params);
+    };
+    if let Some(v) = &raw.max_steps {
+        if *v.get_ref() == 0 {
+            return Err(src.invalid_at("packing.max_steps", v, "must be at least 1"));
+        }
+        params.max_steps = *v.get_ref();
+    }
+    if let Some(v) = &raw.growth_rate {
+        if !(*v.get_ref() > 0.0 && *v.get_ref() <= 1.0) {
+            return Err(src.invalid_at("packing.growth_rate", v, "must lie in (0, 1]"));
+        }
+        params.growth_rate = *v.get_ref();
+    }
+    if let Some(v) = &raw.tolerance {
+        if !(*v.get_ref() > 0.0 && *v.get_ref() <= 0.1) {
+            return Err(src.invalid_at("packing.tolerance", v, "must lie in (0, 0.1]"));
+        }
+        params.tolerance = *v.get_ref();
+    }
+    if let Some(v) = &raw.rotation {
+        params.rotation = *v.get_ref();
+    }
+    Ok(params)
+}
+
+fn output(src: &Source, raw: Option<&Spanned<RawOutput>>) -> Result<OutputSpec, SceneError> {
+    let mut spec = OutputSpec::default();
+    let Some(raw) = raw.map(Spanned::get_ref) else {
+        return Ok(spec);
+    };
+    if let Some(dir) = &raw.dir {
+        if dir.get_ref().trim().is_empty() {
+            return Err(src.invalid_at("output.dir", dir, "must not be empty"));
+        }
+        spec.dir = PathBuf::from(dir.get_ref());
+    }
+    if let Some(v) = &raw.grains_csv {
+        spec.grains_csv = *v.get_ref();
+    }
+    if let Some(v) = &raw.summary_json {
+        spec.summary_json = *v.get_ref();
+    }
+    Ok(spec)
+}
