@@ -1,0 +1,204 @@
+//! The spheres in tree order, and the innermost loops of the pair walk over them.
+
+use super::boundary::{spheres_intersect, Aabb};
+use super::Pair;
+use std::ops::Range;
+
+/// Width of the blocks the zero-shift kernel tests before branching: a fixed trip
+/// count lets the compiler unroll and vectorise the block.
+const BLOCK: usize = 8;
+
+/// The stored spheres in tree order as separate arrays (structure of arrays), so that
+/// the kernels stream through them; every node owns a contiguous range.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Lanes {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub z: Vec<f64>,
+    pub r: Vec<f64>,
+    pub id: Vec<u32>,
+}
+
+impl Lanes {
+    pub fn len(&self) -> usize {
+        self.id.len()
+    }
+
+    /// Sets the length to `n`; new slots hold zeros until [`Lanes::set`].
+    pub fn resize(&mut self, n: usize) {
+        for v in [&mut self.x, &mut self.y, &mut self.z, &mut self.r] {
+            v.resize(n, 0.0);
+        }
+        self.id.resize(n, 0);
+    }
+
+    pub fn set(&mut self, k: usize, centre: [f64; 3], radius: f64, id: u32) {
+        (self.x[k], self.y[k], self.z[k]) = (centre[0], centre[1], centre[2]);
+        (self.r[k], self.id[k]) = (radius, id);
+    }
+
+    #[inline]
+    pub fn centre(&self, k: usize) -> [f64; 3] {
+        [self.x[k], self.y[k], self.z[k]]
+    }
+
+    #[inline]
+    pub fn aabb(&self, k: usize) -> Aabb {
+        Aabb::of_sphere(self.centre(k), self.r[k])
+    }
+
+    /// The spheres of `run` as a view.
+    #[inline]
+    pub fn view(&self, run: Range<usize>) -> View<'_> {
+        View {
+            x: &self.x[run.clone()],
+            y: &self.y[run.clone()],
+            z: &self.z[run.clone()],
+            r: &self.r[run.clone()],
+            id: &self.id[run],
+        }
+    }
+}
+
+/// One sphere, the first of the pair tests a kernel runs.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Probe {
+    pub centre: [f64; 3],
+    pub radius: f64,
+    pub id: u32,
+}
+
+/// A run of spheres as borrowed arrays.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct View<'a> {
+    pub x: &'a [f64],
+    pub y: &'a [f64],
+    pub z: &'a [f64],
+    pub r: &'a [f64],
+    pub id: &'a [u32],
+}
+
+impl<'a> View<'a> {
+    pub fn len(&self) -> usize {
+        self.id.len()
+    }
+
+    /// The view without its first `k` spheres.
+    #[inline]
+    pub fn tail(&self, k: usize) -> View<'a> {
+        View {
+            x: &self.x[k..],
+            y: &self.y[k..],
+            z: &self.z[k..],
+            r: &self.r[k..],
+            id: &self.id[k..],
+        }
+    }
+
+    /// Sphere `k` of the view as the first of a pair test.
+    #[inline]
+    pub fn probe(&self, k: usize) -> Probe {
+        Probe {
+            centre: [self.x[k], self.y[k], self.z[k]],
+            radius: self.r[k],
+            id: self.id[k],
+        }
+    }
+
+    /// Calls `f(k)` for every sphere `k` of the view whose box `c ± r` meets the closed
+    /// box `[lo, hi]`, testing blocks without branches so that they vectorise.
+    #[inline]
+    pub fn for_each_reaching(&self, lo: [f64; 3], hi: [f64; 3], mut f: impl FnMut(usize)) {
+        let reaches = |k: usize| {
+            let r = self.r[k];
+            let (x, y, z) = (self.x[k], self.y[k], self.z[k]);
+            (x - r <= hi[0])
+                & (lo[0] <= x + r)
+                & (y - r <= hi[1])
+                & (lo[1] <= y + r)
+                & (z - r <= hi[2])
+                & (lo[2] <= z + r)
+        };
+        let mut base = 0;
+        while base < self.len() {
+            let width = (self.len() - base).min(BLOCK);
+            let mut hits = [false; BLOCK];
+            if width == BLOCK {
+                for (k, h) in hits.iter_mut().enumerate() {
+                    *h = reaches(base + k);
+                }
+            } else {
+                for (k, h) in hits.iter_mut().enumerate().take(width) {
+                    *h = reaches(base + k);
+                }
+            }
+            for k in (0..width).filter(|&k| hits[k]) {
+                f(base + k);
+            }
+            base += width;
+        }
+    }
+
+    /// Pushes every pair of `a` with a sphere of the view that it meets without a
+    /// shift, ids in order. The test is [`spheres_intersect`] with `a` first, which
+    /// with a zero shift gives the same answer as with the other first
+    /// (`cj − ci = −(ci − cj)` exactly, and the sum of radii commutes).
+    #[inline]
+    pub fn zero_shift_pairs(&self, a: Probe, out: &mut Vec<Pair>) {
+        let hit = |k: usize| {
+            let c = [self.x[k], self.y[k], self.z[k]];
+            spheres_intersect(a.centre, a.radius, c, self.r[k], [0.0; 3])
+        };
+        let mut base = 0;
+        while base < self.len() {
+            let width = (self.len() - base).min(BLOCK);
+            let mut hits = [false; BLOCK];
+            if width == BLOCK {
+                for (k, h) in hits.iter_mut().enumerate() {
+                    *h = hit(base + k);
+                }
+            } else {
+                for (k, h) in hits.iter_mut().enumerate().take(width) {
+                    *h = hit(base + k);
+                }
+            }
+            if hits.contains(&true) {
+                for k in (0..width).filter(|&k| hits[k]) {
+                    let b = self.id[base + k];
+                    out.push(Pair {
+                        i: a.id.min(b),
+                        j: a.id.max(b),
+                        shift: [0.0; 3],
+                    });
+                }
+            }
+            base += width;
+        }
+    }
+
+    /// Pushes every pair of `a` with a sphere `b` of the view moved by `s ≠ 0`. The
+    /// test runs with the lower id first, as
+    /// [`brute_force_pairs`](super::brute_force_pairs) does: `(a, b, s)` with
+    /// `id_a > id_b` is the pair `(b, a, −s)`, and `minus_s` must be `−s` computed as
+    /// `0 − s` (bit-identical to the shift of image `−k`).
+    pub fn shifted_pairs(&self, a: Probe, s: [f64; 3], minus_s: [f64; 3], out: &mut Vec<Pair>) {
+        for k in 0..self.len() {
+            let (c, r, b) = ([self.x[k], self.y[k], self.z[k]], self.r[k], self.id[k]);
+            if a.id <= b {
+                if spheres_intersect(a.centre, a.radius, c, r, s) {
+                    out.push(Pair {
+                        i: a.id,
+                        j: b,
+                        shift: s,
+                    });
+                }
+            } else if spheres_intersect(c, r, a.centre, a.radius, minus_s) {
+                out.push(Pair {
+                    i: b,
+                    j: a.id,
+                    shift: minus_s,
+                });
+            }
+        }
+    }
+}
