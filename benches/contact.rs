@@ -4,6 +4,9 @@
 //! `BENCHMARKS.md` (between its markers) and draws `docs/contact_error_vs_time.png`.
 //! Set `CONTACT_BENCH_DRY=1` to print only.
 
+#[path = "common/mod.rs"]
+mod common;
+
 use grainpack::contact::{
     overlaps_prepared, Answer, Ellipsoid, Method, PreparedEllipsoid, Sym3, Vec3,
 };
@@ -281,25 +284,6 @@ fn row(name: &str, label: &str, ns: Option<f64>, s: &Stats, decision: bool) -> S
 
 const HEADER: &str = "| method | set | ns/call (median) | max rel. error | median | p99 | < 1e-15 | < 1e-12 | < 1e-10 | errors |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
 
-fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    let date = std::process::Command::new("date")
-        .arg("-u")
-        .arg("+%F")
-        .output()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_default();
-    format!("{cpu}, {cores} cores, one thread; {date}")
-}
-
 fn main() {
     let sets = [
         load("typical", "contact_typical.csv"),
@@ -315,7 +299,7 @@ fn main() {
     writeln!(
         report,
         "Command: `cargo bench --bench contact`. Machine: {}.\n",
-        machine()
+        common::machine()
     )
     .unwrap();
     report.push_str(HEADER);
@@ -395,25 +379,9 @@ fn main() {
         return;
     }
     let root = env!("CARGO_MANIFEST_DIR");
-    update_benchmarks(&format!("{root}/BENCHMARKS.md"), &report);
+    common::update_section(&format!("{root}/BENCHMARKS.md"), "contact-bench", &report);
     plot(&format!("{root}/docs/contact_error_vs_time.png"), &points);
     eprintln!("wrote BENCHMARKS.md (contact section) and docs/contact_error_vs_time.png");
-}
-
-const BEGIN: &str = "<!-- contact-bench:begin -->";
-const END: &str = "<!-- contact-bench:end -->";
-
-/// Replaces the text between the markers, or appends a section with them.
-fn update_benchmarks(path: &str, report: &str) {
-    let old = std::fs::read_to_string(path).unwrap_or_else(|_| "# Benchmarks\n".into());
-    let block = format!("{BEGIN}\n{report}{END}");
-    let new = match (old.find(BEGIN), old.find(END)) {
-        (Some(b), Some(e)) if b < e => format!("{}{block}{}", &old[..b], &old[e + END.len()..]),
-        _ => format!("{old}\n## Contact function: error against run time\n\n{block}\n"),
-    };
-    let tmp = format!("{path}.tmp");
-    std::fs::write(&tmp, new).unwrap();
-    std::fs::rename(tmp, path).unwrap();
 }
 
 /// Max relative error against median time, log–log, one marker per method and set.

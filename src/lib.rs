@@ -6,7 +6,8 @@
 //!   algebraic separation test as an independent cross-check.
 //! - [`octree`]: the broad phase. Candidate pairs from bounding spheres in a periodic or
 //!   walled box.
-//! - `packing` and `io`: the growth-and-collision loop and the scene files (to come).
+//! - [`packing`]: the growth-and-collision loop, and the exact check of its result.
+//! - [`io`]: scene files (TOML), contact cases (CSV), the written outputs and reports.
 
 // `!(x > y)` is how the numerics say "not positive, or NaN": a NaN must fail the
 // test it meets, which `x <= y` would let through.
@@ -14,5 +15,5 @@
 
 pub mod contact;
 pub mod io;
-#[cfg(not(feature = "wip-no-octree"))]
 pub mod octree;
+pub mod packing;

@@ -1,8 +1,8 @@
 //! Properties of the contact layer that hold whatever the reference data.
 
 use grainpack::contact::{
-    contact_function, contact_function_fast, contact_geometry, overlaps, overlaps_prepared,
-    ContactError, Ellipsoid, PreparedEllipsoid, ShapeError, Stop, Sym3, Vec3,
+    contact_function, contact_function_fast, contact_geometry, contact_geometry_fast, overlaps,
+    overlaps_prepared, ContactError, Ellipsoid, PreparedEllipsoid, ShapeError, Stop, Sym3, Vec3,
 };
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use rand::rngs::StdRng;
@@ -259,6 +259,10 @@ fn contact_point_lies_on_both_scaled_ellipsoids_with_a_common_normal() {
             assert!(v.normalize().dot(&n) > 1.0 - 1e-9, "{v} vs {n}");
         }
         assert_eq!(g.gap > 0.0, g.mu2 > 1.0);
+        // The fast variant differs only by the rounding of μ² (ε·cond(Q), cond ≤ 1e4).
+        let f = contact_geometry_fast(&r, &q1, &q2).unwrap();
+        assert!(close(f.mu2, g.mu2, 1e4 * f64::EPSILON));
+        assert!(Vector3::from(f.normal).dot(&n) > 1.0 - 1e-9);
     }
     assert!(matches!(
         contact_geometry(

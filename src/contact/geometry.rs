@@ -3,7 +3,7 @@
 
 use super::perram_wertheim::factor_at;
 use super::sym::{dot, sym_mul};
-use super::{contact_function, ContactError, Sym3, Vec3};
+use super::{contact_function, contact_function_fast, Contact, ContactError, Sym3, Vec3};
 
 /// Contact geometry of a pair, for collision response.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -30,7 +30,26 @@ pub struct ContactGeometry {
 ///
 /// Coincident centres have no normal: `r12 = 0` is [`ContactError::CoincidentCentres`].
 pub fn contact_geometry(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<ContactGeometry, ContactError> {
-    let c = contact_function(r12, q1, q2)?;
+    geometry_from(contact_function(r12, q1, q2)?, r12, q1, q2)
+}
+
+/// [`contact_geometry`] from [`contact_function_fast`]: μ² to about `ε · cond(Q)`, for
+/// collision response where speed matters more than the last digits.
+pub fn contact_geometry_fast(
+    r12: &Vec3,
+    q1: &Sym3,
+    q2: &Sym3,
+) -> Result<ContactGeometry, ContactError> {
+    geometry_from(contact_function_fast(r12, q1, q2)?, r12, q1, q2)
+}
+
+#[inline]
+fn geometry_from(
+    c: Contact,
+    r12: &Vec3,
+    q1: &Sym3,
+    q2: &Sym3,
+) -> Result<ContactGeometry, ContactError> {
     let d = dot(r12, r12).sqrt();
     if d == 0.0 {
         return Err(ContactError::CoincidentCentres);

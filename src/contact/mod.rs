@@ -22,7 +22,7 @@ pub mod wang;
 
 pub use ellipsoid::{Ellipsoid, ShapeError, QUATERNION_NORM_TOL};
 pub use error::ContactError;
-pub use geometry::{contact_geometry, ContactGeometry};
+pub use geometry::{contact_geometry, contact_geometry_fast, ContactGeometry};
 pub use ldl::MIN_RELATIVE_PIVOT;
 pub use method::{Answer, Method, Timing, UnknownMethod};
 pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};

@@ -2,4 +2,5 @@
 
 pub mod atomic;
 pub mod cases;
+pub mod report;
 pub mod scene;

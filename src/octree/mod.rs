@@ -44,7 +44,7 @@
 //! The packing loop calls [`Octree::rebuild`] every step (measured faster than a refit:
 //! see `build.rs`) and [`Octree::pairs`] with a reused buffer; rayon splits the walk
 //! into a fixed list of tasks, so the output, order included, does not depend on the
-//! thread count. See [`Params`] for the limits and `docs/benchmarks_octree.md` for the
+//! thread count. See [`Params`] for the limits and `BENCHMARKS.md` for the
 //! figures.
 //!
 //! ```

@@ -1,15 +1,62 @@
 //! Command-line options.
 
-use clap::{Parser, Subcommand};
+use clap::{Args, CommandFactory, Parser, Subcommand};
 use grainpack::contact::Method;
+use std::num::NonZeroUsize;
 use std::path::PathBuf;
 
+/// Exit codes, as `pack --help` lists them.
+const EXIT_CODES: &str = "\
+Exit codes:
+  0  the target was reached; the outputs are written and verified overlap-free
+  1  an internal error, or the outputs could not be written (a packing that
+     fails its final overlap check is such an error, and is never written)
+  2  bad input: the scene file or the command line (the message names the file,
+     line, key and value); nothing is written
+  3  the target was not reached (jammed, step limit, or Ctrl-C): the best
+     overlap-free state is written, and the message says why";
+
 /// Packs ellipsoidal grains into a box without overlaps.
+///
+/// `pack SCENE.toml` draws the grains the scene describes, packs them, and writes
+/// grains.csv and summary.json into the output directory. See docs/config.md for the
+/// scene format.
 #[derive(Debug, Parser)]
-#[command(name = "pack", version, about)]
+#[command(
+    name = "pack",
+    version,
+    about,
+    long_about,
+    args_conflicts_with_subcommands = true,
+    after_help = EXIT_CODES
+)]
 pub struct Cli {
+    #[command(flatten)]
+    pub scene: SceneArgs,
     #[command(subcommand)]
-    pub command: Command,
+    pub command: Option<Command>,
+}
+
+/// Options of `pack SCENE.toml`.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
+    /// The scene file (TOML; see docs/config.md).
+    #[arg(value_name = "SCENE.toml")]
+    pub scene: Option<PathBuf>,
+    /// Output directory (overrides the scene's output.dir); created if missing.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Seed of the random generator (overrides the scene's seed).
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// Threads of the packing loop (default: one per core). The result does not
+    /// depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<NonZeroUsize>,
+    /// No progress bar and no closing report on stderr; errors and the reason a
+    /// target was not reached are still printed.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -38,4 +85,29 @@ pub enum Command {
         #[arg(long)]
         time: bool,
     },
+}
+
+/// What to run.
+#[derive(Debug)]
+pub enum Run {
+    /// `pack SCENE.toml ...`: the scene file and the options.
+    Scene(PathBuf, SceneArgs),
+    /// A subcommand.
+    Command(Command),
+}
+
+/// Parses the command line; exits with clap's message and code 2 when it is wrong,
+/// including when neither a scene nor a subcommand is given.
+pub fn parse() -> Run {
+    let cli = Cli::parse();
+    match (cli.command, cli.scene.scene.clone()) {
+        (Some(command), _) => Run::Command(command),
+        (None, Some(path)) => Run::Scene(path, cli.scene),
+        (None, None) => Cli::command()
+            .error(
+                clap::error::ErrorKind::MissingRequiredArgument,
+                "give a scene file (pack SCENE.toml) or a subcommand (pack contact CASES.csv)",
+            )
+            .exit(),
+    }
 }

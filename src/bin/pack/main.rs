@@ -2,26 +2,31 @@
 
 mod cli;
 mod contact;
+mod exit;
+mod scene;
 
-use clap::Parser;
+use cli::{Command, Run};
+use exit::{Exit, Failure};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = cli::Cli::parse();
-    let result = match &cli.command {
-        cli::Command::Contact {
+    let result = match cli::parse() {
+        Run::Scene(path, options) => scene::run(&path, &options),
+        Run::Command(Command::Contact {
             cases,
             method,
             output,
             time,
-        } => contact::run(cases, *method, output.as_deref(), *time),
+        }) => match contact::run(&cases, method, output.as_deref(), time) {
+            Ok(0) => Ok(Exit::Success),
+            Ok(_bad_rows) => Ok(Exit::BadInput),
+            Err(e) => Err(Failure::bad_input(e)),
+        },
     };
-    match result {
-        Ok(0) => ExitCode::SUCCESS,
-        Ok(_) => ExitCode::from(2),
-        Err(e) => {
-            eprintln!("pack: error: {e:#}");
-            ExitCode::from(2)
-        }
-    }
+    result
+        .unwrap_or_else(|failure| {
+            eprintln!("pack: error: {:#}", failure.error);
+            failure.exit
+        })
+        .into()
 }

@@ -157,13 +157,10 @@ pub struct PackingParams {
     /// Step limit: the loop stops with the reason "step limit" after this many steps.
     /// Default 100 000.
     pub max_steps: u64,
-    /// Growth per step, as a fraction of each grain's target semi-axes: an unobstructed
-    /// grain grows from nothing to full size in `1/growth_rate` steps. In `(0, 1]`;
-    /// default 0.001.
+    /// Growth of the common scale of all grains in the first step, relative; the loop
+    /// then adapts it (faster after easy steps, slower after hard ones, capped at
+    /// `packing::RATE_MAX`). In `(0, 1]`; default 0.001.
     pub growth_rate: f64,
-    /// Relative tolerance on size: a grain within `tolerance` of its target semi-axes
-    /// counts as full grown. In `(0, 0.1]`; default 10⁻⁶.
-    pub tolerance: f64,
     /// Whether grains may rotate while packing. Default false: orientations stay as
     /// drawn, as the scene's statistics ask.
     pub rotation: bool,
@@ -174,7 +171,6 @@ impl Default for PackingParams {
         Self {
             max_steps: 100_000,
             growth_rate: 1e-3,
-            tolerance: 1e-6,
             rotation: false,
         }
     }

@@ -129,7 +129,6 @@ pub(crate) enum RawKind {
 pub(crate) struct RawPacking {
     pub max_steps: Opt<u64>,
     pub growth_rate: Opt<f64>,
-    pub tolerance: Opt<f64>,
     pub rotation: Opt<bool>,
 }
 

@@ -212,12 +212,6 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
         }
         params.growth_rate = *v.get_ref();
     }
-    if let Some(v) = &raw.tolerance {
-        if !(*v.get_ref() > 0.0 && *v.get_ref() <= 0.1) {
-            return Err(src.invalid_at("packing.tolerance", v, "must lie in (0, 0.1]"));
-        }
-        params.tolerance = *v.get_ref();
-    }
     if let Some(v) = &raw.rotation {
         params.rotation = *v.get_ref();
     }

@@ -1,0 +1,228 @@
+//! `pack SCENE.toml`: draw the scene's grains, pack them, check the result, write it.
+
+use crate::cli::SceneArgs;
+use crate::exit::{Exit, Failure};
+use anyhow::{anyhow, Context};
+use grainpack::io::report::{create_dir, write_outputs, RunInfo, Summary};
+use grainpack::io::scene::{OutputSpec, Scene};
+use grainpack::packing::{pack, PackError, Packing, Progress, StopReason};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Set by Ctrl-C; the loop polls it once per sweep and then returns its best
+/// overlap-free state.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// Exit status of a process ended by a second Ctrl-C (128 + SIGINT, as shells report).
+const EXIT_SIGINT: i32 = 130;
+
+/// Shortest time between two progress-bar updates: the bar redraws at most 20 times a
+/// second, so formatting a message for every step would be wasted.
+const PROGRESS_INTERVAL: Duration = Duration::from_millis(50);
+
+/// Runs a scene: bad input is exit code 2 (nothing written), a target not reached is
+/// 3 (the best overlap-free state written), anything else that fails is 1.
+pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
+    let start = Instant::now();
+    let name = path.display().to_string();
+    let mut scene = Scene::from_path(path).map_err(Failure::bad_input)?;
+    if let Some(seed) = options.seed {
+        scene.seed = seed;
+    }
+    if let Some(dir) = &options.out {
+        scene.output.dir.clone_from(dir);
+    }
+    if let Some(n) = options.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n.get())
+            .build_global()
+            .with_context(|| format!("cannot start {n} threads"))?;
+    }
+    let threads = rayon::current_num_threads();
+    let specs = scene
+        .sample_grains(&mut scene.rng())
+        .with_context(|| format!("{name}: cannot draw the grains"))?;
+    // Made before packing, so that a directory that cannot be made fails at once
+    // rather than after a long run; removed again if nothing is written to it.
+    let new_dir = prepare_dir(&scene.output)?;
+    ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            std::process::exit(EXIT_SIGINT);
+        }
+    })
+    .context("cannot install the Ctrl-C handler")?;
+
+    let mut bar = Bar::new(options.quiet, specs.len());
+    let started = Instant::now();
+    let result = pack(
+        &specs,
+        &scene.domain,
+        &scene.packing,
+        scene.seed,
+        &STOP,
+        &mut |p| bar.update(p),
+    );
+    let packing_time = started.elapsed();
+    bar.finish();
+    let checked = result
+        .map_err(|e| pack_failure(e, &name))
+        .and_then(|packing| {
+            if packing.verification.is_clean() {
+                Ok(packing)
+            } else {
+                Err(not_clean(&packing).into())
+            }
+        });
+    let packing = match checked {
+        Ok(packing) => packing,
+        Err(failure) => {
+            if let Some(dir) = new_dir {
+                // Only an empty directory is removed; failing to is harmless.
+                let _ = std::fs::remove_dir(dir);
+            }
+            return Err(failure);
+        }
+    };
+
+    let run = RunInfo {
+        threads,
+        packing: packing_time,
+        total: start.elapsed(),
+    };
+    let summary = Summary::new(&scene, &specs, &packing, &run);
+    let written =
+        write_outputs(&scene.output, &packing.grains, &summary).map_err(anyhow::Error::from)?;
+    let wrote = describe(&written);
+    if !options.quiet {
+        eprintln!(
+            "pack: {} grains, packing fraction {:.4} (target {:.4}), {} after {} steps in \
+             {:.2} s; {} pairs checked, none overlapping",
+            summary.grains,
+            summary.packing_fraction,
+            summary.target_fraction,
+            packing.stop,
+            packing.counters.steps,
+            packing_time.as_secs_f64(),
+            summary.checked_pairs,
+        );
+    }
+    if packing.stop.is_success() {
+        if !options.quiet {
+            eprintln!("pack: {wrote}");
+        }
+        return Ok(Exit::Success);
+    }
+    eprintln!(
+        "pack: target not reached: {}. The best overlap-free state (scale {:.4}, packing \
+         fraction {:.4} of {:.4}) is kept; {wrote}",
+        why(packing.stop, &scene),
+        packing.scale,
+        summary.packing_fraction,
+        summary.full_size_fraction,
+    );
+    Ok(Exit::NotReached)
+}
+
+/// Creates the output directory if any output is enabled; returns it if it is new.
+fn prepare_dir(output: &OutputSpec) -> Result<Option<PathBuf>, Failure> {
+    let dir = &output.dir;
+    if !(output.grains_csv || output.summary_json) || dir.is_dir() {
+        return Ok(None);
+    }
+    create_dir(dir).map_err(anyhow::Error::from)?;
+    Ok(Some(dir.clone()))
+}
+
+/// A packing error: the scene asks for what the loop cannot do (bad input), or
+/// anything else (internal).
+fn pack_failure(error: PackError, name: &str) -> Failure {
+    match error {
+        PackError::RotationUnsupported => {
+            Failure::bad_input(anyhow!(error).context(name.to_owned()))
+        }
+        _ => anyhow!(error).context("the packing failed").into(),
+    }
+}
+
+/// The error for a packing that failed its final check: never written.
+fn not_clean(packing: &Packing) -> anyhow::Error {
+    let v = &packing.verification;
+    anyhow!(
+        "the packing failed its final overlap check ({} overlapping pairs, {} wall \
+         violations, {} grains meeting their own image; min μ² = {:e}); nothing is \
+         written. This is a bug: please report it with the scene and seed",
+        v.overlapping_pairs,
+        v.wall_violations,
+        v.self_images,
+        v.min_mu2,
+    )
+}
+
+/// Why the loop stopped short, in words.
+fn why(stop: StopReason, scene: &Scene) -> String {
+    match stop {
+        StopReason::TargetReached => "the target was reached".to_owned(),
+        StopReason::Jammed => "jammed: the grains cannot grow any further".to_owned(),
+        StopReason::StepLimit => format!(
+            "step limit: {} steps made (packing.max_steps)",
+            scene.packing.max_steps
+        ),
+        StopReason::Interrupted => "interrupted (Ctrl-C)".to_owned(),
+    }
+}
+
+/// "wrote a, b" or "wrote nothing".
+fn describe(written: &[PathBuf]) -> String {
+    if written.is_empty() {
+        "wrote nothing (output.grains_csv and output.summary_json are false)".to_owned()
+    } else {
+        let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        format!("wrote {}", names.join(", "))
+    }
+}
+
+/// The progress bar on stderr: growth (the scale, 0 to 1) as the bar; the step, scale,
+/// packing fraction and overlapping pairs of the last sweep as its message, cut to the
+/// terminal's width. Hidden with `--quiet` or when stderr is not
+/// a terminal.
+struct Bar {
+    bar: ProgressBar,
+    last: Option<Instant>,
+}
+
+impl Bar {
+    fn new(quiet: bool, grains: usize) -> Self {
+        let bar = if quiet || !std::io::stderr().is_terminal() {
+            ProgressBar::hidden()
+        } else {
+            let style =
+                ProgressStyle::with_template("{spinner} {elapsed:>3} [{bar:20}] {wide_msg}")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar())
+                    .progress_chars("=> ");
+            ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr())
+                .with_style(style)
+                .with_message(format!("{grains} grains"))
+        };
+        Self { bar, last: None }
+    }
+
+    fn update(&mut self, p: &Progress) {
+        if self.bar.is_hidden() || self.last.is_some_and(|t| t.elapsed() < PROGRESS_INTERVAL) {
+            return;
+        }
+        self.last = Some(Instant::now());
+        self.bar
+            .set_position((p.scale.clamp(0.0, 1.0) * 1000.0) as u64);
+        self.bar.set_message(format!(
+            "step {}  scale {:.4}  fraction {:.4}  overlaps {}",
+            p.step, p.scale, p.fraction, p.overlaps
+        ));
+    }
+
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}

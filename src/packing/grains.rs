@@ -1,0 +1,54 @@
+//! The packed state as it is written out.
+
+use std::fmt;
+
+/// One packed grain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PackedGrain {
+    /// Index in the input (and the id written out).
+    pub id: u32,
+    /// Index of its phase in the scene.
+    pub phase: usize,
+    /// Centre; inside `[0, L)` in a periodic box.
+    pub centre: [f64; 3],
+    /// Semi-axes as packed (target semi-axes times the scale reached).
+    pub semi_axes: [f64; 3],
+    /// Orientation `[w, x, y, z]` (Hamilton; semi-axis k along column k of R).
+    pub quaternion: [f64; 4],
+}
+
+/// Why the packing loop stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum StopReason {
+    /// Every grain reached its target size without overlap.
+    TargetReached,
+    /// The growth rate fell below its floor: the grains cannot grow further.
+    Jammed,
+    /// `packing.max_steps` steps were made.
+    StepLimit,
+    /// The caller asked to stop (Ctrl-C).
+    Interrupted,
+}
+
+impl StopReason {
+    /// The name written to `summary.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            StopReason::TargetReached => "target_reached",
+            StopReason::Jammed => "jammed",
+            StopReason::StepLimit => "step_limit",
+            StopReason::Interrupted => "interrupted",
+        }
+    }
+
+    /// Whether the packing met its target.
+    pub fn is_success(self) -> bool {
+        self == StopReason::TargetReached
+    }
+}
+
+impl fmt::Display for StopReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
