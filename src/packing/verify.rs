@@ -18,7 +18,7 @@ pub struct Verification {
     pub min_mu2: f64,
     /// Grains crossing a wall of a walled box (must be 0; always 0 when periodic).
     pub wall_violations: usize,
-    /// Grains meeting their own periodic image (must be 0).
+    /// Grains overlapping their own periodic image (must be 0).
     pub self_images: usize,
 }
 
@@ -61,7 +61,15 @@ pub fn verify(grains: &[PackedGrain], domain: &Domain) -> Result<Verification, P
         .map_err(|e| PackError::Domain(e.to_string()))?;
     let mut pairs = Vec::new();
     tree.pairs(&mut pairs);
-    let self_images = pairs.iter().filter(|p| p.i == p.j).count();
+    // A grain against its own image: the bounding spheres only say it may.
+    let self_images = pairs
+        .iter()
+        .filter(|p| p.i == p.j)
+        .filter(|p| {
+            let q = &shapes[p.i as usize].q;
+            contact_function(&p.shift, q, q).map_or(true, |c| c.mu2 < 1.0)
+        })
+        .count();
     let mu2: Vec<f64> = pairs
         .par_iter()
         .filter(|p| p.i != p.j)
@@ -95,4 +103,77 @@ pub fn verify(grains: &[PackedGrain], domain: &Domain) -> Result<Verification, P
         wall_violations,
         self_images,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grain(id: u32, centre: [f64; 3], semi_axes: [f64; 3]) -> PackedGrain {
+        PackedGrain {
+            id,
+            phase: 0,
+            centre,
+            semi_axes,
+            quaternion: [1.0, 0.0, 0.0, 0.0],
+        }
+    }
+
+    fn domain(boundary: Boundary) -> Domain {
+        Domain {
+            size: [10.0, 10.0, 10.0],
+            boundary,
+        }
+    }
+
+    #[test]
+    fn verify_finds_an_overlap_across_a_periodic_face() {
+        // Needles along x, 2.2 apart through the x face, reaching 1.2 each: they overlap.
+        let grains = [
+            grain(0, [0.5, 5.0, 5.0], [1.2, 0.2, 0.2]),
+            grain(1, [8.3, 5.0, 5.0], [1.2, 0.2, 0.2]),
+        ];
+        let v = verify(&grains, &domain(Boundary::Periodic)).unwrap();
+        assert_eq!((v.checked_pairs, v.overlapping_pairs), (1, 1));
+        assert!(v.min_mu2 < 1.0 && !v.is_clean());
+        // Walls: no image, so the same two are far apart.
+        let v = verify(&grains, &domain(Boundary::Reflecting)).unwrap();
+        assert_eq!(v.overlapping_pairs, 0);
+    }
+
+    #[test]
+    fn verify_passes_grains_that_only_nearly_touch() {
+        // Prolate grains along x, side by side along y with centres 2(1 + 1e-9) apart:
+        // their bounding spheres meet, and μ² = (1 + 1e-9)² (y is a principal axis).
+        let grains = [
+            grain(0, [5.0, 4.0, 5.0], [2.0, 1.0, 1.0]),
+            grain(1, [5.0, 6.000000002, 5.0], [2.0, 1.0, 1.0]),
+        ];
+        let v = verify(&grains, &domain(Boundary::Reflecting)).unwrap();
+        assert_eq!((v.checked_pairs, v.overlapping_pairs), (1, 0));
+        assert!((v.min_mu2 - (1.0 + 1e-9f64).powi(2)).abs() < 1e-15);
+        assert!(v.is_clean());
+    }
+
+    #[test]
+    fn verify_finds_a_grain_through_a_wall_and_one_meeting_its_image() {
+        let through = [grain(0, [0.5, 5.0, 5.0], [1.0, 0.5, 0.5])];
+        let v = verify(&through, &domain(Boundary::Reflecting)).unwrap();
+        assert_eq!(v.wall_violations, 1);
+        let long = [grain(0, [5.0, 5.0, 5.0], [5.5, 0.5, 0.5])];
+        let v = verify(&long, &domain(Boundary::Periodic)).unwrap();
+        assert_eq!(v.self_images, 1);
+        assert!(!v.is_clean());
+    }
+
+    #[test]
+    fn verify_rejects_what_is_not_a_packing() {
+        let misnumbered = [grain(3, [5.0; 3], [1.0; 3])];
+        assert!(matches!(
+            verify(&misnumbered, &domain(Boundary::Periodic)),
+            Err(PackError::Grain { id: 0, .. })
+        ));
+        let flat = [grain(0, [5.0; 3], [1.0, 0.0, 1.0])];
+        assert!(verify(&flat, &domain(Boundary::Periodic)).is_err());
+    }
 }
