@@ -119,21 +119,31 @@ impl<'a> View<'a> {
                 & (z - r <= hi[2])
                 & (lo[2] <= z + r)
         };
+        self.for_each_hit(reaches, &mut f);
+    }
+
+    /// Calls `f(k)` for every sphere `k` of the view that passes `test`, evaluating
+    /// `test` on whole blocks of [`BLOCK`] spheres without branches so that it
+    /// vectorises, and calling `f` only for the hits.
+    #[inline(always)]
+    fn for_each_hit(&self, test: impl Fn(usize) -> bool, mut f: impl FnMut(usize)) {
         let mut base = 0;
         while base < self.len() {
             let width = (self.len() - base).min(BLOCK);
             let mut hits = [false; BLOCK];
             if width == BLOCK {
                 for (k, h) in hits.iter_mut().enumerate() {
-                    *h = reaches(base + k);
+                    *h = test(base + k);
                 }
             } else {
                 for (k, h) in hits.iter_mut().enumerate().take(width) {
-                    *h = reaches(base + k);
+                    *h = test(base + k);
                 }
             }
-            for k in (0..width).filter(|&k| hits[k]) {
-                f(base + k);
+            if hits.contains(&true) {
+                for k in (0..width).filter(|&k| hits[k]) {
+                    f(base + k);
+                }
             }
             base += width;
         }
@@ -149,31 +159,14 @@ impl<'a> View<'a> {
             let c = [self.x[k], self.y[k], self.z[k]];
             spheres_intersect(a.centre, a.radius, c, self.r[k], [0.0; 3])
         };
-        let mut base = 0;
-        while base < self.len() {
-            let width = (self.len() - base).min(BLOCK);
-            let mut hits = [false; BLOCK];
-            if width == BLOCK {
-                for (k, h) in hits.iter_mut().enumerate() {
-                    *h = hit(base + k);
-                }
-            } else {
-                for (k, h) in hits.iter_mut().enumerate().take(width) {
-                    *h = hit(base + k);
-                }
-            }
-            if hits.contains(&true) {
-                for k in (0..width).filter(|&k| hits[k]) {
-                    let b = self.id[base + k];
-                    out.push(Pair {
-                        i: a.id.min(b),
-                        j: a.id.max(b),
-                        shift: [0.0; 3],
-                    });
-                }
-            }
-            base += width;
-        }
+        self.for_each_hit(hit, |k| {
+            let b = self.id[k];
+            out.push(Pair {
+                i: a.id.min(b),
+                j: a.id.max(b),
+                shift: [0.0; 3],
+            });
+        });
     }
 
     /// Pushes every pair of `a` with a sphere `b` of the view moved by `s ≠ 0`. The
