@@ -19,10 +19,14 @@ fn main() {
         .filter(|a| !a.starts_with("--"))
         .collect();
     let scenes = if args.is_empty() {
-        vec![
-            "configs/grains.toml".to_string(),
-            "configs/kanapy_elongated.toml".to_string(),
+        [
+            "configs/grains.toml",
+            "configs/kanapy_elongated.toml",
+            "configs/density_spheres.toml",
+            "configs/density_spheroids.toml",
         ]
+        .map(String::from)
+        .to_vec()
     } else {
         args
     };

@@ -564,3 +564,20 @@ fn von_mises_cdf_of_the_kanapy_tilt_is_symmetric_about_90_degrees() {
         assert!((law.cdf(t) + law.cdf(PI - t) - 1.0).abs() < 1e-9);
     }
 }
+
+#[test]
+fn every_shipped_config_loads_and_samples() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/configs");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let scene = grainpack::io::scene::Scene::from_path(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let grains = scene.sample_grains(&mut scene.rng()).unwrap();
+            assert!(!grains.is_empty(), "{}", path.display());
+            seen += 1;
+        }
+    }
+    assert!(seen >= 4, "only {seen} configs found");
+}
