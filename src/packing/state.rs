@@ -15,6 +15,8 @@ pub(crate) struct State {
     pub volumes: Vec<f64>,
     /// Half-widths `√Q_kk` along the axes at target size, for the walls.
     pub half_widths: Vec<[f64; 3]>,
+    /// The largest bounding radius at target size.
+    pub max_bounding_radius: f64,
     pub domain: Domain,
     pub box_shape: BoxShape,
 }
@@ -45,8 +47,12 @@ impl State {
             Boundary::Reflecting => BoxShape::reflecting(domain.size),
         }
         .map_err(|e| PackError::Domain(e.to_string()))?;
+        let max_bounding_radius = shapes
+            .iter()
+            .fold(0.0f64, |m, e| m.max(e.bounding_radius()));
         Ok(Self {
             centres: vec![[0.0; 3]; specs.len()],
+            max_bounding_radius,
             shapes,
             volumes,
             half_widths,

@@ -66,10 +66,7 @@ impl Sweep {
     ) -> Result<Found, PackError> {
         let inflated = s * (1.0 + CONTACT_GAP);
         let t0 = Instant::now();
-        let max_radius = state
-            .shapes
-            .iter()
-            .fold(0.0f64, |m, e| m.max(e.bounding_radius()));
+        let max_radius = state.max_bounding_radius;
         let travelled = self.travelled.iter().fold(0.0f64, |m, &d| m.max(d));
         let reach_lost = 2.0 * travelled + 2.0 * (inflated - self.list_scale).max(0.0) * max_radius;
         let rebuild = self.pairs.is_empty() && self.spheres.is_empty()
@@ -106,9 +103,11 @@ impl Sweep {
         // Only pairs with a grain that moved can have changed, unless the scale did.
         let all = rebuild || inflated != self.hits_scale;
         self.hits_scale = inflated;
-        self.scaled.clear();
-        self.scaled
-            .extend(state.shapes.iter().map(|e| e.scaled(inflated)));
+        if all {
+            self.scaled.clear();
+            self.scaled
+                .extend(state.shapes.iter().map(|e| e.scaled(inflated)));
+        }
         let (centres, shapes, scaled, moved) =
             (&state.centres, &state.shapes, &self.scaled, &self.moved);
         let tested: usize = self
