@@ -33,7 +33,6 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use state::State;
 use std::sync::atomic::Ordering;
-use std::time::Instant;
 use sweep::Sweep;
 
 /// Packing fraction the grains start at: small enough that random positions are
@@ -162,7 +161,6 @@ pub fn pack(
     if params.rotation {
         return Err(PackError::RotationUnsupported);
     }
-    let start = Instant::now();
     let mut state = State::new(specs, domain)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(POSITION_STREAM);
@@ -266,7 +264,6 @@ pub fn pack(
         .collect();
     let verification = verify(&grains, domain)?;
     let fraction = state.fraction(scale);
-    let _ = start;
     Ok(Packing {
         grains,
         scale,
