@@ -1,61 +1,57 @@
-//! Packs scenes and reports time, density and the verification.
+//! Packs scenes and reports time, density and the verification; then the scaling of
+//! kanapy's scene from 10³ to 10⁵ grains (time and peak memory).
 //!
-//! `cargo bench --bench packing -- [SCENE.toml ...]` (default: the shipped configs)
-//! prints a table and rewrites the packing section of `BENCHMARKS.md`
-//! (`PACKING_BENCH_DRY=1`: print only).
+//! `cargo bench --bench packing` prints both tables and rewrites the packing sections
+//! of `BENCHMARKS.md` (`PACKING_BENCH_DRY=1`: print only; `PACKING_BENCH_MAX=N`: the
+//! scaling stops at N grains, default 100 000).
 
 #[path = "common/mod.rs"]
 mod common;
 
-use grainpack::io::scene::Scene;
-use grainpack::packing::pack;
+use grainpack::io::scene::{GrainCount, Scene};
+use grainpack::packing::{pack, Packing};
 use std::fmt::Write as _;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+/// The scaling runs kanapy's grains at this packing fraction (the 10⁵ goal).
+const SCALING_FRACTION: f64 = 0.60;
+
 fn main() {
-    let args: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with("--"))
-        .collect();
-    let scenes = if args.is_empty() {
-        [
-            "configs/grains.toml",
-            "configs/kanapy_elongated.toml",
-            "configs/density_spheres.toml",
-            "configs/density_spheroids.toml",
-        ]
-        .map(String::from)
-        .to_vec()
-    } else {
-        args
-    };
-    let mut report = format!("Machine: {}.\n\n", common::machine());
-    report.push_str("| scene | grains | time (s) | fraction | target | stop | steps | sweeps | pairs tested | overlapping | min μ² | broad / narrow / response (s) |\n");
-    report.push_str("|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---|\n");
-    for path in scenes {
-        let scene = Scene::from_path(path.as_ref()).unwrap();
-        let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-        let t = Instant::now();
-        let p = pack(
-            &specs,
-            &scene.domain,
-            &scene.packing,
-            scene.seed,
-            &AtomicBool::new(false),
-            &mut |_| {},
-        )
-        .unwrap();
-        let secs = t.elapsed().as_secs_f64();
+    let dry = std::env::var_os("PACKING_BENCH_DRY").is_some();
+    let max: usize = std::env::var("PACKING_BENCH_MAX")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(100_000);
+    let root = env!("CARGO_MANIFEST_DIR");
+    let threads = rayon::current_num_threads();
+
+    let mut report = format!("Machine: {}; {threads} threads.\n\n", common::machine());
+    report.push_str("| scene | rotation | grains | time (s) | fraction | target | stop | relaxations | FIRE steps | pairs tested | overlapping | min μ² | broad / narrow / response (s) |\n");
+    report.push_str("|---|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---|\n");
+    let scenes = [
+        ("configs/grains.toml", None),
+        ("configs/kanapy_elongated.toml", None),
+        ("configs/kanapy_elongated.toml", Some(true)),
+        ("configs/density_spheres.toml", None),
+        ("configs/density_spheroids.toml", Some(false)),
+        ("configs/density_spheroids.toml", None),
+    ];
+    for (path, rotation) in scenes {
+        let mut scene = Scene::from_path(format!("{root}/{path}").as_ref()).unwrap();
+        if let Some(r) = rotation {
+            scene.packing.rotation = r;
+        }
+        let (p, grains, secs) = run(&scene);
         writeln!(
             report,
-            "| {path} | {} | {secs:.2} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {:.6} | {:.2} / {:.2} / {:.2} |",
-            specs.len(),
+            "| {path} | {} | {grains} | {secs:.2} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {:.6} | {:.2} / {:.2} / {:.2} |",
+            scene.packing.rotation,
             p.fraction,
             scene.expected_fraction(),
             p.stop,
             p.counters.steps,
-            p.counters.sweeps,
+            p.counters.fire_steps,
             p.counters.pairs_tested,
             p.verification.overlapping_pairs,
             p.verification.min_mu2,
@@ -64,10 +60,90 @@ fn main() {
             p.counters.response.as_secs_f64()
         )
         .unwrap();
+        print!(
+            "{}",
+            report.lines().last().unwrap_or_default().to_owned() + "\n"
+        );
     }
     print!("{report}");
-    if std::env::var_os("PACKING_BENCH_DRY").is_none() {
-        let root = env!("CARGO_MANIFEST_DIR");
+    if !dry {
         common::update_section(&format!("{root}/BENCHMARKS.md"), "packing-bench", &report);
     }
+
+    // Scaling: kanapy's grain laws in a box holding N grains at 0.60. Sizes run in
+    // increasing order, so the process's peak resident memory after each run is that
+    // run's peak.
+    let mut scaling = format!("Machine: {}; {threads} threads.\n\n", common::machine());
+    scaling.push_str("| grains | box side | time (s) | ms per 1000 grains per FIRE step | fraction | stop | FIRE steps | pairs tested | overlapping | peak memory (MB) |\n");
+    scaling.push_str("|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|\n");
+    let base = Scene::from_path(format!("{root}/configs/kanapy_elongated.toml").as_ref()).unwrap();
+    let base_grains = base.sample_grains(&mut base.rng()).unwrap().len() as f64;
+    let base_side = base.domain.size[0];
+    let GrainCount::Fraction(base_fraction) = base.count else {
+        panic!("kanapy's scene gives a target fraction");
+    };
+    for n in [1_000usize, 3_000, 10_000, 30_000, 100_000] {
+        if n > max {
+            break;
+        }
+        let mut scene = base.clone();
+        // Grains ∝ volume × fraction.
+        let side = base_side * (n as f64 / base_grains * base_fraction / SCALING_FRACTION).cbrt();
+        scene.domain.size = [side; 3];
+        scene.count = GrainCount::Fraction(SCALING_FRACTION);
+        let (p, grains, secs) = run(&scene);
+        let per_step = 1e3 * secs / p.counters.fire_steps.max(1) as f64 / (grains as f64 / 1000.0);
+        writeln!(
+            scaling,
+            "| {grains} | {side:.1} | {secs:.2} | {per_step:.2} | {:.4} | {} | {} | {} | {} | {:.0} |",
+            p.fraction,
+            p.stop,
+            p.counters.fire_steps,
+            p.counters.pairs_tested,
+            p.verification.overlapping_pairs,
+            peak_memory_mb(),
+        )
+        .unwrap();
+        print!(
+            "{}",
+            scaling.lines().last().unwrap_or_default().to_owned() + "\n"
+        );
+    }
+    print!("{scaling}");
+    if !dry {
+        common::update_section(
+            &format!("{root}/BENCHMARKS.md"),
+            "packing-scaling",
+            &scaling,
+        );
+    }
+}
+
+/// Draws and packs a scene: the packing, the number of grains and the seconds taken
+/// by `pack` (which includes its final exact check).
+fn run(scene: &Scene) -> (Packing, usize, f64) {
+    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+    let t = Instant::now();
+    let p = pack(
+        &specs,
+        &scene.domain,
+        &scene.packing,
+        scene.seed,
+        &AtomicBool::new(false),
+        &mut |_| {},
+    )
+    .unwrap();
+    (p, specs.len(), t.elapsed().as_secs_f64())
+}
+
+/// The process's peak resident memory (`VmHWM`), in MB; 0 where /proc is missing.
+fn peak_memory_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(0.0, |kb| kb / 1024.0)
 }

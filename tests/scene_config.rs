@@ -385,8 +385,8 @@ fn bad_orientations_are_rejected() {
 #[test]
 fn bad_packing_and_output_values_are_rejected() {
     assert_starts(
-        &error(&with_extra("[packing]\ngrowth_rate = 0")),
-        "scene.toml:20:15: packing.growth_rate = 0: must lie in (0, 1]",
+        &error(&with_extra("[packing]\njam_resolution = 0")),
+        "scene.toml:20:18: packing.jam_resolution = 0: must lie in (0, 0.1]",
     );
     assert_starts(
         &error(&with_extra("[packing]\nmax_steps = 0")),

@@ -2,5 +2,8 @@
 
 pub mod atomic;
 pub mod cases;
+pub mod plots;
 pub mod report;
 pub mod scene;
+pub mod voxel;
+pub mod vtk;

@@ -1,67 +1,64 @@
 //! The growth-and-collision loop: grains grow in a box until they reach their target
-//! sizes, pushed apart whenever they overlap, and the result is verified overlap-free.
+//! sizes, pushed apart wherever they overlap, and the result is verified overlap-free.
 //!
 //! # How
-//! Every grain keeps its drawn shape and orientation; one global scale `s` multiplies
-//! all target semi-axes. A step:
-//! 1. **grow**: `s ← min(1, s · (1 + rate))`;
-//! 2. **broad phase**: the octree lists the pairs whose bounding spheres meet;
-//! 3. **narrow phase**: the contact function μ of each candidate pair;
-//! 4. **response**: each overlapping pair (μ < 1) is pushed apart along its centre line
-//!    to the distance `d/μ` at which it would just touch (scaling sizes by μ and the
-//!    distance by 1/μ are the same thing), split by volume and summed over a grain's
-//!    pairs (Jacobi, so the order of pairs does not matter); walls push grains back
-//!    inside a reflecting box;
-//! 5. repeat 2–4 until no overlap is left or the sweep budget is spent, then adapt the
-//!    rate (faster after an easy step, slower after a hard one).
+//! Every grain keeps its drawn shape (and orientation, unless the scene lets grains
+//! rotate); one global scale `s` multiplies all target semi-axes. The loop is the
+//! compress-and-relax protocol of soft-particle jamming (O'Hern et al., *Phys. Rev. E*
+//! 68, 011306, 2003), with the Perram–Wertheim contact factor μ as the measure of
+//! overlap (Donev et al., *J. Comput. Phys.* 202, 737, 2005):
+//! 1. grains start at random positions;
+//! 2. at a trial scale `s`, the overlap energy `Σ w (1 − μ)²` of all pairs with μ < 1
+//!    (at `s` inflated by [`MARGIN`]) is minimised with FIRE ([`fire`]): each step is
+//!    **broad phase** (a Verlet list of candidate pairs from the octree), **narrow
+//!    phase** (the contact function of every candidate pair) and **response** (forces
+//!    and torques, a damped inertial move);
+//! 3. the relaxation ends *clean* as soon as every pair is apart at the true scale (μ ≥
+//!    1 + [`CONTACT_GAP`]), or *stuck* when the energy stops falling (jammed);
+//! 4. the scale moves: the first trial is the target itself (`s = 1`); after a stuck
+//!    relaxation the state shrunk by its smallest μ is a clean state at once, and the
+//!    scale is bisected between the best clean scale and the smallest stuck one until
+//!    they are within `jam_resolution` (relative; a scene parameter).
 //!
-//! Whatever the state, shrinking every grain by the smallest μ over all pairs gives an
-//! overlap-free packing: that is the "best overlap-free state" written when the target
-//! cannot be reached. The result is checked afterwards by [`verify`], an exact test of
-//! every pair whose bounding spheres meet.
+//! The margin makes a relaxation finish as soon as the true overlaps are gone, long
+//! before the energy (taken at the inflated size) reaches zero. The result is checked
+//! afterwards by [`verify`], an exact test of every pair whose bounding spheres meet.
 
+mod fire;
+mod forces;
 mod grains;
+mod neighbours;
 mod state;
-mod sweep;
 mod verify;
 
+pub use fire::{
+    ALPHA_DECAY, ALPHA_START, DT_GROW, DT_MAX, DT_MIN, DT_SHRINK, DT_START, MAX_MOVE, N_DELAY,
+    STUCK_RATIO, WINDOW,
+};
 pub use grains::{PackedGrain, StopReason};
-pub use sweep::{CONTACT_GAP, OVERSHOOT};
+pub use neighbours::SKIN;
 pub use verify::{verify, Verification};
 
+use crate::io::scene::Boundary;
+use fire::{Fire, Outcome, Run};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use state::State;
-use std::sync::atomic::Ordering;
-use sweep::Sweep;
+use state::{State, WALL_MARGIN};
 
-/// Packing fraction the grains start at: small enough that random positions are
-/// nearly overlap-free, large enough not to waste steps growing through empty space.
-pub const START_FRACTION: f64 = 0.05;
-/// Sweeps allowed per step to clear the overlaps that growth created. Measured on
-/// `configs/grains.toml` (515 grains, φ = 0.60): 30 jams at 0.591 after 11 s, 100
-/// reaches 0.60 in 7.7 s, 300 in 2.2 s (fewer failed steps, fewer rate halvings).
-pub const SWEEPS_PER_STEP: u32 = 300;
-/// After a step cleared in at most [`EASY_SWEEPS`] sweeps the growth rate is
-/// multiplied by `RATE_UP`; after a step that could not be cleared, by `RATE_DOWN`
-/// (and the scale steps back).
-pub const RATE_UP: f64 = 1.5;
-/// See [`RATE_UP`].
-pub const RATE_DOWN: f64 = 0.5;
-/// A step is easy when it cleared in this many sweeps or fewer.
-pub const EASY_SWEEPS: u32 = 3;
-/// Largest growth of the scale per step (relative).
-pub const RATE_MAX: f64 = 0.05;
-/// The loop reports [`StopReason::Jammed`] when the growth rate falls below this.
-pub const RATE_FLOOR: f64 = 1e-7;
-/// The best overlap-free state of an unfinished packing is shrunk by this much more
-/// than its smallest μ, so that it keeps the [`CONTACT_GAP`] margin.
+/// Pairs are kept at least this far apart, relatively: a relaxation is clean when every
+/// pair has `μ ≥ 1 + CONTACT_GAP` at the true sizes. 1e-9 is far above the error of
+/// the fast contact function on the shapes of a scene (≤ 1e-12 relative for aspect
+/// ratios below 100) and far below anything a user can see.
+pub const CONTACT_GAP: f64 = 1e-9;
+/// The energy is taken at the scale inflated by `1 + MARGIN`: the relaxation can stop
+/// when the overlaps at the inflated size are below `MARGIN`, since the true sizes are
+/// then apart. 10⁻³ costs at most 0.3 % of packing fraction at jamming.
+pub const MARGIN: f64 = 1e-3;
+/// FIRE steps one relaxation may take before it counts as stuck.
+pub const STAGE_STEPS: u64 = 20_000;
+/// The state shrunk by its smallest μ is shrunk by this much more, so that it keeps the
+/// [`CONTACT_GAP`] margin after rounding.
 pub const SHRINK_MARGIN: f64 = 4.0 * CONTACT_GAP;
-/// The loop also reports [`StopReason::Jammed`] when the scale of the last clean state
-/// grew by less than `STALL_GROWTH` (relative) over the last [`STALL_STEPS`] steps.
-pub const STALL_GROWTH: f64 = 1e-4;
-/// See [`STALL_GROWTH`].
-pub const STALL_STEPS: u64 = 200;
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
 
@@ -72,32 +69,32 @@ use std::time::Duration;
 /// What the loop reports while it runs, for a progress bar.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
-    /// Steps done.
+    /// FIRE steps done.
     pub step: u64,
-    /// Current global scale (1 = target sizes).
+    /// The trial scale being relaxed (1 = target sizes).
     pub scale: f64,
-    /// Packing fraction of the current sizes.
+    /// Packing fraction at that scale.
     pub fraction: f64,
-    /// Overlapping pairs found in the last sweep.
+    /// Pairs overlapping in the last step (at the scale inflated by [`MARGIN`]).
     pub overlaps: usize,
 }
 
 /// Counters and timers of the loop's stages.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Counters {
-    /// Growth steps.
+    /// Relaxations (one per trial scale).
     pub steps: u64,
-    /// Relaxation sweeps (broad + narrow phase + response).
-    pub sweeps: u64,
+    /// FIRE steps over all relaxations (each a broad, narrow phase and response).
+    pub fire_steps: u64,
+    /// Builds of the candidate-pair list.
+    pub list_builds: u64,
     /// Candidate pairs tested by the narrow phase.
     pub pairs_tested: u64,
-    /// Overlapping pairs pushed apart.
-    pub overlaps_resolved: u64,
     /// Time in the broad phase.
     pub broad_phase: Duration,
     /// Time in the narrow phase.
     pub narrow_phase: Duration,
-    /// Time in the response (pushes, walls, wrapping).
+    /// Time in the response (forces, moves).
     pub response: Duration,
 }
 
@@ -133,9 +130,6 @@ pub enum PackError {
         /// What is wrong.
         message: String,
     },
-    /// Rotation during packing is not implemented.
-    #[error("packing.rotation = true is not supported yet: orientations stay as drawn")]
-    RotationUnsupported,
     /// The box or the grains' bounding spheres were rejected by the broad phase.
     #[error("broad phase: {0}")]
     Domain(String),
@@ -147,9 +141,10 @@ pub enum PackError {
 /// Packs the grains into the domain. See the module docs for the algorithm.
 ///
 /// Deterministic for a given `seed`, whatever the number of threads: candidate pairs
-/// come in a fixed order, and pushes are summed in that order. `stop` is polled once
-/// per sweep; when set, the loop ends with [`StopReason::Interrupted`] and returns the
-/// best overlap-free state. `progress` is called once per step.
+/// come in a fixed order, each pair is evaluated on its own, and forces are summed in
+/// pair order. `stop` is polled once per FIRE step; when set, the loop ends with
+/// [`StopReason::Interrupted`] and returns the best overlap-free state. `progress` is
+/// called after every FIRE step's narrow phase.
 pub fn pack(
     specs: &[GrainSpec],
     domain: &Domain,
@@ -158,118 +153,187 @@ pub fn pack(
     stop: &AtomicBool,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<Packing, PackError> {
-    if params.rotation {
-        return Err(PackError::RotationUnsupported);
-    }
-    let mut state = State::new(specs, domain)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(POSITION_STREAM);
-    for c in &mut state.centres {
-        *c = [0, 1, 2].map(|k| rng.random::<f64>() * domain.size[k]);
-    }
-    let mut s = (START_FRACTION / state.fraction(1.0)).cbrt().min(1.0);
-    state.confine(s);
-
-    let mut counters = Counters::default();
-    let mut sweep = Sweep::default();
-    let mut rate = params.growth_rate.min(RATE_MAX);
-    // The last scale at which the state was overlap-free, and its centres.
-    let mut safe: Option<(f64, Vec<[f64; 3]>)> = None;
-    // The clean scale STALL_STEPS ago, and when that window started.
-    let (mut stall_scale, mut stall_step) = (0.0, 0);
+    let centres: Vec<[f64; 3]> = specs
+        .iter()
+        .map(|_| [0, 1, 2].map(|k| rng.random::<f64>() * domain.size[k]))
+        .collect();
+    // The loop works on the grains in the order of their starting places along a
+    // space-filling curve, so that neighbours sit close in memory.
+    let order = spatial_order(&centres, domain.size);
+    let sorted: Vec<GrainSpec> = order.iter().map(|&k| specs[k]).collect();
+    let mut state = State::new(&sorted, domain).map_err(|e| match e {
+        PackError::Grain { id, message } => PackError::Grain {
+            id: order[id],
+            message,
+        },
+        e => e,
+    })?;
+    state.centres = order.iter().map(|&k| centres[k]).collect();
+    let mut run = Run {
+        neighbours: Default::default(),
+        forces: Default::default(),
+        counters: Counters::default(),
+        rotate: params.rotation,
+        stop,
+        progress,
+    };
+    let mut fire = Fire::default();
+    // The best clean state (scale, centres, orientations) and the smallest stuck scale.
+    let mut best: Option<Snapshot> = None;
+    let mut stuck = f64::INFINITY;
+    let mut s = 1.0;
     let reason = loop {
-        if stop.load(Ordering::Relaxed) {
-            break StopReason::Interrupted;
-        }
-        if counters.steps >= params.max_steps {
+        let left = params.max_steps.saturating_sub(run.counters.fire_steps);
+        if left == 0 {
             break StopReason::StepLimit;
         }
-        counters.steps += 1;
-        let mut cleared = None;
-        let mut overlaps = 0;
-        for k in 1..=SWEEPS_PER_STEP {
-            let found = sweep.run(&mut state, s, true, &mut counters)?;
-            overlaps = found.overlaps;
-            if found.overlaps == 0 {
-                cleared = Some(k);
-                break;
-            }
-        }
-        progress(&Progress {
-            step: counters.steps,
-            scale: s,
-            fraction: state.fraction(s),
-            overlaps,
-        });
-        if counters.steps - stall_step >= STALL_STEPS {
-            let clean = safe.as_ref().map_or(0.0, |(safe_s, _)| *safe_s);
-            if clean < stall_scale * (1.0 + STALL_GROWTH) {
-                break StopReason::Jammed;
-            }
-            (stall_scale, stall_step) = (clean, counters.steps);
-        }
-        match cleared {
-            Some(sweeps) => {
-                safe = Some((s, state.centres.clone()));
+        run.counters.steps += 1;
+        let outcome = fire.relax(
+            &mut state,
+            &mut run,
+            s,
+            s * (1.0 + MARGIN),
+            left.min(STAGE_STEPS),
+        )?;
+        match outcome {
+            Outcome::Interrupted => break StopReason::Interrupted,
+            Outcome::Clean => {
+                best = Some(Snapshot::of(&state, s));
                 if s >= 1.0 {
                     break StopReason::TargetReached;
                 }
-                if sweeps <= EASY_SWEEPS {
-                    rate = (rate * RATE_UP).min(RATE_MAX);
-                }
-                s = (s * (1.0 + rate)).min(1.0);
             }
-            None => {
-                rate *= RATE_DOWN;
-                if rate < RATE_FLOOR {
-                    break StopReason::Jammed;
+            Outcome::Stuck | Outcome::Budget => {
+                stuck = stuck.min(s);
+                let shrunk = clean_scale(&mut state, &mut run, s)?;
+                if best.as_ref().is_none_or(|b| b.scale < shrunk) {
+                    best = Some(Snapshot::of(&state, shrunk));
                 }
-                let floor = safe.as_ref().map_or(0.0, |(safe_s, _)| *safe_s);
-                s = (s / (1.0 + rate)).max(floor);
             }
         }
+        let low = best.as_ref().map_or(0.0, |b| b.scale);
+        if stuck - low <= params.jam_resolution * low {
+            break StopReason::Jammed;
+        }
+        s = 0.5 * (low + stuck);
     };
+    let snapshot = match best {
+        Some(b) => b,
+        None => {
+            let shrunk = clean_scale(&mut state, &mut run, s)?;
+            Snapshot::of(&state, shrunk)
+        }
+    };
+    finish(&sorted, &order, &mut state, snapshot, reason, run.counters)
+}
 
-    // The state to write: the current one if clean, else the better of the last clean
-    // one and the current one shrunk by its smallest μ.
-    let (scale, centres) = if reason == StopReason::TargetReached {
-        (s, state.centres.clone())
-    } else {
-        let found = sweep.run(&mut state, s, false, &mut counters)?;
-        let shrunk = if found.overlaps == 0 {
-            s
-        } else {
-            s * found.min_mu * (1.0 - SHRINK_MARGIN)
-        };
-        match safe {
-            Some((safe_s, safe_centres)) if safe_s >= shrunk => (safe_s, safe_centres),
-            _ => (shrunk, state.centres.clone()),
-        }
+/// The grains' indices sorted by the Morton code of their centres (10 bits a
+/// coordinate), ties by index.
+fn spatial_order(centres: &[[f64; 3]], size: [f64; 3]) -> Vec<usize> {
+    const BITS: u32 = 10;
+    let cells = f64::from(1u32 << BITS);
+    let spread = |x: u64| {
+        // Bit b of x moves to bit 3b.
+        (0..BITS).fold(0u64, |acc, b| acc | ((x >> b) & 1) << (3 * b))
     };
-    // Wrap into the box (the sweeps wrap only when they rebuild their pair list).
-    state.centres = centres;
-    state.confine(scale);
-    let centres = &state.centres;
-    let grains: Vec<PackedGrain> = specs
+    let mut keyed: Vec<(u64, usize)> = centres
         .iter()
-        .zip(centres)
         .enumerate()
-        .map(|(id, (spec, c))| PackedGrain {
-            id: id as u32,
+        .map(|(i, c)| {
+            let q = [0, 1, 2].map(|k| ((c[k] / size[k] * cells) as u64).min((1 << BITS) - 1));
+            (spread(q[0]) | spread(q[1]) << 1 | spread(q[2]) << 2, i)
+        })
+        .collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The largest scale up to `s` at which the current state is clean: every pair apart
+/// with the [`CONTACT_GAP`] (scaling all grains by `t` divides every μ by `t`), every
+/// grain inside the walls.
+fn clean_scale(state: &mut State, run: &mut Run<'_>, s: f64) -> Result<f64, PackError> {
+    let big_s = s * (1.0 + MARGIN);
+    run.neighbours.update(state, big_s)?;
+    run.forces.evaluate(
+        state,
+        &run.neighbours.pairs,
+        run.neighbours.builds,
+        big_s,
+        false,
+    );
+    let mut t = s.min(run.forces.min_mu1 / (1.0 + CONTACT_GAP));
+    if state.domain.boundary == Boundary::Reflecting {
+        let size = state.domain.size;
+        for (c, w) in state.centres.iter().zip(&state.half_widths) {
+            for k in 0..3 {
+                let room = c[k].min(size[k] - c[k]).max(0.0);
+                t = t.min(room / (w[k] * (1.0 + WALL_MARGIN)));
+            }
+        }
+    }
+    Ok(t * (1.0 - SHRINK_MARGIN))
+}
+
+/// A clean state kept as the fallback result.
+struct Snapshot {
+    scale: f64,
+    centres: Vec<[f64; 3]>,
+    quaternions: Vec<[f64; 4]>,
+}
+
+impl Snapshot {
+    fn of(state: &State, scale: f64) -> Self {
+        Self {
+            scale,
+            centres: state.centres.clone(),
+            quaternions: state.quaternions.clone(),
+        }
+    }
+}
+
+/// Writes the snapshot out as packed grains and checks it exactly.
+/// `specs` and the state are in the loop's order: `order[k]` is the input index of the
+/// loop's grain `k`.
+fn finish(
+    specs: &[GrainSpec],
+    order: &[usize],
+    state: &mut State,
+    snapshot: Snapshot,
+    stop: StopReason,
+    counters: Counters,
+) -> Result<Packing, PackError> {
+    let scale = snapshot.scale;
+    state.centres = snapshot.centres;
+    state.wrap();
+    let mut grains = vec![None; specs.len()];
+    for (k, ((spec, c), q)) in specs
+        .iter()
+        .zip(&state.centres)
+        .zip(&snapshot.quaternions)
+        .enumerate()
+    {
+        grains[order[k]] = Some(PackedGrain {
+            id: order[k] as u32,
             phase: spec.phase,
             centre: *c,
             semi_axes: spec.semi_axes.map(|a| a * scale),
-            quaternion: spec.quaternion,
-        })
-        .collect();
-    let verification = verify(&grains, domain)?;
+            quaternion: *q,
+        });
+    }
+    let grains: Vec<PackedGrain> = grains.into_iter().flatten().collect();
+    let verification = verify(&grains, &state.domain)?;
     let fraction = state.fraction(scale);
     Ok(Packing {
         grains,
         scale,
         fraction,
-        stop: reason,
+        stop,
         counters,
         verification,
     })
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,19 +1,25 @@
-//! The grains as the loop sees them: fixed shapes at unit scale, moving centres.
+//! The grains as the loop sees them: shapes at target size, moving centres and (when
+//! the scene lets them rotate) orientations.
 
 use super::PackError;
 use crate::contact::{Ellipsoid, PreparedEllipsoid};
 use crate::io::scene::{Boundary, Domain, GrainSpec};
 use crate::octree::{BoxShape, Sphere};
 
-/// Everything about the grains that does not change while packing (at scale 1), and
-/// their centres, which do.
+/// Everything about the grains at scale 1 (target sizes), and their centres.
 pub(crate) struct State {
     pub centres: Vec<[f64; 3]>,
-    /// Prepared shapes at their target size.
+    /// Orientations `[w, x, y, z]`; change only when the grains may rotate.
+    pub quaternions: Vec<[f64; 4]>,
+    /// Target semi-axes.
+    pub axes: Vec<[f64; 3]>,
+    /// Whether each grain is a sphere (three equal semi-axes): no ellipsoid maths.
+    pub round: Vec<bool>,
+    /// Prepared shapes at their target size and current orientation.
     pub shapes: Vec<PreparedEllipsoid>,
     /// Volumes at target size.
     pub volumes: Vec<f64>,
-    /// Half-widths `√Q_kk` along the axes at target size, for the walls.
+    /// Half-widths `√Q_kk` along the box axes at target size, for the walls.
     pub half_widths: Vec<[f64; 3]>,
     /// The largest bounding radius at target size.
     pub max_bounding_radius: f64,
@@ -29,44 +35,65 @@ impl State {
         if specs.len() >= u32::MAX as usize {
             return Err(PackError::TooMany(specs.len()));
         }
-        let mut shapes = Vec::with_capacity(specs.len());
-        let mut volumes = Vec::with_capacity(specs.len());
-        let mut half_widths = Vec::with_capacity(specs.len());
-        for (id, spec) in specs.iter().enumerate() {
-            let bad = |e: &dyn std::fmt::Display| PackError::Grain {
-                id,
-                message: e.to_string(),
-            };
-            let e = Ellipsoid::new(spec.semi_axes, spec.quaternion).map_err(|e| bad(&e))?;
-            shapes.push(PreparedEllipsoid::new(&e).map_err(|e| bad(&e))?);
-            volumes.push(e.volume());
-            half_widths.push([e.q[0].sqrt(), e.q[3].sqrt(), e.q[5].sqrt()]);
-        }
         let box_shape = match domain.boundary {
             Boundary::Periodic => BoxShape::periodic(domain.size),
             Boundary::Reflecting => BoxShape::reflecting(domain.size),
         }
         .map_err(|e| PackError::Domain(e.to_string()))?;
-        let max_bounding_radius = shapes
-            .iter()
-            .fold(0.0f64, |m, e| m.max(e.bounding_radius()));
-        Ok(Self {
-            centres: vec![[0.0; 3]; specs.len()],
-            max_bounding_radius,
-            shapes,
-            volumes,
-            half_widths,
+        let n = specs.len();
+        let mut state = Self {
+            centres: vec![[0.0; 3]; n],
+            quaternions: specs.iter().map(|s| s.quaternion).collect(),
+            axes: specs.iter().map(|s| s.semi_axes).collect(),
+            round: specs
+                .iter()
+                .map(|s| s.semi_axes.iter().all(|&a| a == s.semi_axes[0]))
+                .collect(),
+            shapes: Vec::with_capacity(n),
+            volumes: Vec::with_capacity(n),
+            half_widths: Vec::with_capacity(n),
+            max_bounding_radius: 0.0,
             domain: *domain,
             box_shape,
-        })
+        };
+        for (id, spec) in specs.iter().enumerate() {
+            let (shape, widths) = state.shape_of(id, spec.quaternion)?;
+            state
+                .volumes
+                .push(4.0 / 3.0 * std::f64::consts::PI * spec.semi_axes.iter().product::<f64>());
+            state.max_bounding_radius = state.max_bounding_radius.max(shape.bounding_radius());
+            state.shapes.push(shape);
+            state.half_widths.push(widths);
+        }
+        Ok(state)
+    }
+
+    /// The prepared shape and half-widths of grain `id` at orientation `q`.
+    fn shape_of(&self, id: usize, q: [f64; 4]) -> Result<(PreparedEllipsoid, [f64; 3]), PackError> {
+        let bad = |e: &dyn std::fmt::Display| PackError::Grain {
+            id,
+            message: e.to_string(),
+        };
+        let e = Ellipsoid::new(self.axes[id], q).map_err(|e| bad(&e))?;
+        let shape = PreparedEllipsoid::new(&e).map_err(|e| bad(&e))?;
+        Ok((shape, [e.q[0].sqrt(), e.q[3].sqrt(), e.q[5].sqrt()]))
+    }
+
+    /// Turns grain `id` to orientation `q` (a unit quaternion).
+    pub fn set_orientation(&mut self, id: usize, q: [f64; 4]) -> Result<(), PackError> {
+        let (shape, widths) = self.shape_of(id, q)?;
+        self.quaternions[id] = q;
+        self.shapes[id] = shape;
+        self.half_widths[id] = widths;
+        Ok(())
     }
 
     pub fn len(&self) -> usize {
         self.centres.len()
     }
 
-    /// Bounding spheres at scale `s`.
-    pub fn spheres(&self, s: f64, out: &mut Vec<Sphere>) {
+    /// Bounding spheres at scale `s`, each grown by `pad`.
+    pub fn spheres(&self, s: f64, pad: f64, out: &mut Vec<Sphere>) {
         out.clear();
         out.extend(
             self.centres
@@ -76,7 +103,7 @@ impl State {
                 .map(|(id, (c, e))| Sphere {
                     id: id as u32,
                     centre: *c,
-                    radius: s * e.bounding_radius(),
+                    radius: s * e.bounding_radius() + pad,
                 }),
         );
     }
@@ -86,31 +113,35 @@ impl State {
         s * s * s * self.volumes.iter().sum::<f64>() / self.domain.volume()
     }
 
-    /// Puts every centre back in the box: wrapped into `[0, L)` when periodic, pushed
-    /// inside the walls (by its half-width at scale `s`) when walled.
-    pub fn confine(&mut self, s: f64) {
+    /// Wraps every centre into `[0, L)` in a periodic box; in a walled box, puts it
+    /// inside the box (the walls' forces keep the grains themselves inside).
+    pub fn wrap(&mut self) {
         let size = self.domain.size;
-        match self.domain.boundary {
-            Boundary::Periodic => {
-                for c in &mut self.centres {
-                    for k in 0..3 {
-                        c[k] = c[k].rem_euclid(size[k]);
-                        // rem_euclid can round up to L itself.
-                        if c[k] >= size[k] {
-                            c[k] = 0.0;
-                        }
+        let periodic = self.domain.boundary == Boundary::Periodic;
+        for c in &mut self.centres {
+            for k in 0..3 {
+                c[k] = if periodic {
+                    // rem_euclid can round up to L itself.
+                    let x = c[k].rem_euclid(size[k]);
+                    if x >= size[k] {
+                        0.0
+                    } else {
+                        x
                     }
-                }
-            }
-            Boundary::Reflecting => {
-                for (c, w) in self.centres.iter_mut().zip(&self.half_widths) {
-                    for k in 0..3 {
-                        let half = s * w[k] * (1.0 + WALL_MARGIN);
-                        c[k] = c[k].clamp(half, (size[k] - half).max(half));
-                    }
-                }
+                } else {
+                    c[k].clamp(0.0, size[k])
+                };
             }
         }
+    }
+
+    /// Whether grain `i` at scale `s` lies inside the walls with the [`WALL_MARGIN`].
+    pub fn inside_walls(&self, i: usize, s: f64) -> bool {
+        let (c, w, size) = (self.centres[i], self.half_widths[i], self.domain.size);
+        (0..3).all(|k| {
+            let half = s * w[k] * (1.0 + WALL_MARGIN);
+            c[k] >= half && c[k] <= size[k] - half
+        })
     }
 }
 

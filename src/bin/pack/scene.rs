@@ -92,9 +92,9 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
         packing: packing_time,
         total: start.elapsed(),
     };
-    let summary = Summary::new(&scene, &specs, &packing, &run);
+    let mut summary = Summary::new(&scene, &specs, &packing, &run);
     let written =
-        write_outputs(&scene.output, &packing.grains, &summary).map_err(anyhow::Error::from)?;
+        write_outputs(&scene, &packing.grains, &mut summary).map_err(anyhow::Error::from)?;
     let wrote = describe(&written);
     if !options.quiet {
         eprintln!(
@@ -129,22 +129,19 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
 /// Creates the output directory if any output is enabled; returns it if it is new.
 fn prepare_dir(output: &OutputSpec) -> Result<Option<PathBuf>, Failure> {
     let dir = &output.dir;
-    if !(output.grains_csv || output.summary_json) || dir.is_dir() {
+    if !output.writes_anything() || dir.is_dir() {
         return Ok(None);
     }
     create_dir(dir).map_err(anyhow::Error::from)?;
     Ok(Some(dir.clone()))
 }
 
-/// A packing error: the scene asks for what the loop cannot do (bad input), or
-/// anything else (internal).
+/// A packing error: the validated scene's grains always pack, so any error is
+/// internal.
 fn pack_failure(error: PackError, name: &str) -> Failure {
-    match error {
-        PackError::RotationUnsupported => {
-            Failure::bad_input(anyhow!(error).context(name.to_owned()))
-        }
-        _ => anyhow!(error).context("the packing failed").into(),
-    }
+    anyhow!(error)
+        .context(format!("{name}: the packing failed"))
+        .into()
 }
 
 /// The error for a packing that failed its final check: never written.
@@ -177,7 +174,7 @@ fn why(stop: StopReason, scene: &Scene) -> String {
 /// "wrote a, b" or "wrote nothing".
 fn describe(written: &[PathBuf]) -> String {
     if written.is_empty() {
-        "wrote nothing (output.grains_csv and output.summary_json are false)".to_owned()
+        "wrote nothing (every file of [output] is turned off)".to_owned()
     } else {
         let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
         format!("wrote {}", names.join(", "))

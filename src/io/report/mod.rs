@@ -1,4 +1,5 @@
-//! What a packing run writes: the grain table (`grains.csv`) and the run's summary
+//! What a packing run writes: the grain table (`grains.csv`), the VTK exports
+//! (`grains.vtu`, `centers.vtp`, see [`crate::io::vtk`]) and the run's summary
 //! (`summary.json`), with the statistics of the packed grains against the scene's laws.
 //!
 //! Each file is written to a temporary name beside it and renamed when complete
@@ -17,13 +18,18 @@
 //! let stop = AtomicBool::new(false);
 //! let packing = pack(&specs, &scene.domain, &scene.packing, scene.seed, &stop, &mut |_| {})?;
 //! let run = RunInfo { threads: 1, packing: Duration::ZERO, total: Duration::ZERO };
-//! let summary = Summary::new(&scene, &specs, &packing, &run);
-//! write_outputs(&scene.output, &packing.grains, &summary)?;
+//! let mut summary = Summary::new(&scene, &specs, &packing, &run);
+//! write_outputs(&scene, &packing.grains, &mut summary)?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod derived;
 pub mod stats;
 mod summary;
+
+pub use derived::{
+    write_derived, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
+};
 
 pub use summary::{
     CounterSummary, PhaseSummary, QuantitySummary, RunInfo, Share, Summary, TimingSummary,
@@ -31,7 +37,8 @@ pub use summary::{
 
 use crate::io::atomic::write_atomically;
 use crate::io::cases::format_17;
-use crate::io::scene::OutputSpec;
+use crate::io::scene::Scene;
+use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
 use crate::packing::PackedGrain;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -102,34 +109,96 @@ pub fn write_summary_json(out: &mut dyn Write, summary: &Summary) -> io::Result<
 }
 
 /// Creates `output.dir` if needed and writes the files `output` enables, each to a
-/// temporary name renamed when complete: [`GRAINS_CSV`], then [`SUMMARY_JSON`].
+/// temporary name renamed when complete, in this order: [`GRAINS_CSV`],
+/// [`GRAINS_VTU`], [`CENTERS_VTP`], the outputs of [`write_derived`], and
+/// [`SUMMARY_JSON`] last, so that a summary means the other files are complete.
 /// Returns the paths written.
 pub fn write_outputs(
-    output: &OutputSpec,
+    scene: &Scene,
     grains: &[PackedGrain],
-    summary: &Summary,
+    summary: &mut Summary,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    let dir = &output.dir;
-    if output.grains_csv || output.summary_json {
-        create_dir(dir)?;
+    let (output, domain) = (&scene.output, &scene.domain);
+    if output.writes_anything() {
+        create_dir(&output.dir)?;
     }
-    let mut written = Vec::new();
-    let mut write = |name: &str, f: &dyn Fn(&mut dyn Write) -> io::Result<()>| {
-        let path = dir.join(name);
-        write_atomically(&path, |w| f(w)).map_err(|source| ReportError::Write {
+    let mut files = OutputFiles::new(&output.dir);
+    if output.grains_csv {
+        files.write(GRAINS_CSV, |w| write_grains_csv(w, grains))?;
+    }
+    if let Some(vtk) = &output.vtk {
+        files.write(GRAINS_VTU, |w| write_grains_vtu(w, grains, domain, vtk))?;
+    }
+    if output.centers {
+        files.write(CENTERS_VTP, |w| write_centers_vtp(w, grains))?;
+    }
+    write_derived(output, &scene.phases, domain, grains, summary, &mut files)?;
+    if output.summary_json {
+        files.write(SUMMARY_JSON, |w| write_summary_json(w, summary))?;
+    }
+    Ok(files.into_written())
+}
+
+/// The files written into one output directory, each atomically
+/// ([`write_atomically`]), in the order written.
+#[derive(Debug)]
+pub struct OutputFiles<'a> {
+    dir: &'a Path,
+    written: Vec<PathBuf>,
+}
+
+impl<'a> OutputFiles<'a> {
+    /// Nothing written yet into `dir` (which must exist).
+    pub fn new(dir: &'a Path) -> Self {
+        Self {
+            dir,
+            written: Vec::new(),
+        }
+    }
+
+    /// Writes `dir/name` through `write`, to a temporary name renamed when complete;
+    /// on error nothing is left under either name.
+    pub fn write(
+        &mut self,
+        name: &str,
+        write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> Result<(), ReportError> {
+        let path = self.dir.join(name);
+        write_atomically(&path, |w| write(w)).map_err(|source| ReportError::Write {
             path: path.clone(),
             source,
         })?;
-        written.push(path);
-        Ok::<(), ReportError>(())
-    };
-    if output.grains_csv {
-        write(GRAINS_CSV, &|w| write_grains_csv(w, grains))?;
+        self.written.push(path);
+        Ok(())
     }
-    if output.summary_json {
-        write(SUMMARY_JSON, &|w| write_summary_json(w, summary))?;
+
+    /// `dir/name`.
+    pub fn path(&self, name: &str) -> PathBuf {
+        self.dir.join(name)
     }
-    Ok(written)
+
+    /// Records a file written (atomically) by someone else.
+    pub fn record(&mut self, path: PathBuf) {
+        self.written.push(path);
+    }
+
+    /// The error of failing to write `dir/name`.
+    pub fn error(&self, name: &str, source: io::Error) -> ReportError {
+        ReportError::Write {
+            path: self.dir.join(name),
+            source,
+        }
+    }
+
+    /// The paths written so far, in order.
+    pub fn written(&self) -> &[PathBuf] {
+        &self.written
+    }
+
+    /// The paths written, in order.
+    pub fn into_written(self) -> Vec<PathBuf> {
+        self.written
+    }
 }
 
 /// Creates `dir` and its parents if missing.

@@ -90,6 +90,28 @@ pub fn ks_distance_to_value(sample: &[f64], value: f64, rel_tol: f64) -> Option<
     Some(below.max(above) as f64 / sample.len() as f64)
 }
 
+/// The equivalent-sphere diameter `2 (a1 a2 a3)^{1/3}` of an ellipsoid with these
+/// semi-axes: the diameter of the sphere of the same volume.
+///
+/// ```
+/// use grainpack::io::report::stats::equivalent_diameter;
+/// assert!((equivalent_diameter([4.0, 2.0, 1.0]) - 4.0).abs() < 1e-15);
+/// ```
+pub fn equivalent_diameter(semi_axes: [f64; 3]) -> f64 {
+    2.0 * semi_axes.iter().product::<f64>().cbrt()
+}
+
+/// The aspect ratio `a1/a2` of a packed spheroid: its first semi-axis (the axis of
+/// revolution) over its second (above 1 prolate, below 1 oblate).
+///
+/// ```
+/// use grainpack::io::report::stats::aspect_ratio;
+/// assert_eq!(aspect_ratio([3.0, 1.5, 1.5]), 2.0);
+/// ```
+pub fn aspect_ratio(semi_axes: [f64; 3]) -> f64 {
+    semi_axes[0] / semi_axes[1]
+}
+
 /// The tilt angle `θ` (radians) of a grain oriented by the unit quaternion `q`, for a
 /// tilt about `axis`: the angle of its first axis `e` (column 0 of the rotation) in the
 /// plane normal to `axis`, from the next coordinate axis `i` in cyclic order toward the

@@ -1,7 +1,10 @@
 //! `summary.json`: the run's figures, and per phase the target statistics against
 //! those of the packed grains.
 
-use super::stats::{ks_distance, ks_distance_to_value, tilt_angle, Moments, VonMisesCdf};
+use super::stats::{
+    aspect_ratio, equivalent_diameter, ks_distance, ks_distance_to_value, tilt_angle, Moments,
+    VonMisesCdf,
+};
 use crate::io::scene::GrainSpec;
 use crate::io::scene::{Boundary, Distribution, GrainCount, Orientation, Phase, Scene};
 use crate::packing::{PackedGrain, Packing};
@@ -69,6 +72,9 @@ pub struct Summary {
     pub counters: CounterSummary,
     /// Per phase, in scene order.
     pub phases: Vec<PhaseSummary>,
+    /// The voxel RVE, when one was written (set by the writer).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rve: Option<super::RveSummary>,
 }
 
 /// Seconds spent: the loop's stages, the loop as a whole, and the run.
@@ -89,14 +95,14 @@ pub struct TimingSummary {
 /// The loop's counters.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct CounterSummary {
-    /// Growth steps.
+    /// Relaxations (one per trial scale).
     pub steps: u64,
-    /// Relaxation sweeps.
-    pub sweeps: u64,
+    /// FIRE steps over all relaxations.
+    pub fire_steps: u64,
+    /// Builds of the candidate-pair list.
+    pub list_builds: u64,
     /// Candidate pairs tested by the narrow phase.
     pub pairs_tested: u64,
-    /// Overlapping pairs pushed apart.
-    pub overlaps_resolved: u64,
 }
 
 /// A share asked for and the share obtained.
@@ -213,11 +219,12 @@ impl Summary {
             },
             counters: CounterSummary {
                 steps: c.steps,
-                sweeps: c.sweeps,
+                fire_steps: c.fire_steps,
+                list_builds: c.list_builds,
                 pairs_tested: c.pairs_tested,
-                overlaps_resolved: c.overlaps_resolved,
             },
             phases,
+            rve: None,
         }
     }
 }
@@ -239,12 +246,9 @@ fn grain_statistics(
 ) -> (QuantitySummary, QuantitySummary, Option<QuantitySummary>) {
     let diameters: Vec<f64> = grains
         .iter()
-        .map(|g| 2.0 * g.semi_axes.iter().product::<f64>().cbrt())
+        .map(|g| equivalent_diameter(g.semi_axes))
         .collect();
-    let aspects: Vec<f64> = grains
-        .iter()
-        .map(|g| g.semi_axes[0] / g.semi_axes[1])
-        .collect();
+    let aspects: Vec<f64> = grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect();
     let tilt_angle_deg = match phase.orientation {
         Orientation::Tilt { axis, angle } => {
             let law = VonMisesCdf::new(&angle);

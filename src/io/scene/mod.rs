@@ -22,9 +22,11 @@
 //! assert_eq!(grains.len(), 50);
 //! ```
 
+mod density;
 mod distribution;
 mod error;
 mod orientation;
+mod output;
 mod raw;
 mod sample;
 mod special;
@@ -34,11 +36,16 @@ mod von_mises;
 pub use distribution::Distribution;
 pub use error::{SampleError, SceneError, TOP_LEVEL};
 pub use orientation::{rotation_column, Axis, Orientation};
+pub use output::{
+    proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
+    DEFAULT_VTK_RESOLUTION, MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
+    MIN_VTK_RESOLUTION,
+};
 pub use sample::GrainSpec;
 pub use von_mises::{VonMises, MAX_KAPPA};
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The largest `target_fraction` accepted, and the largest expected packing fraction
 /// of a `grains` count: 0.7707, the densest known packing of congruent ellipsoids
@@ -154,15 +161,16 @@ impl Phase {
 /// (`[packing]` in the scene file). The loop documents how it uses each.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PackingParams {
-    /// Step limit: the loop stops with the reason "step limit" after this many steps.
-    /// Default 100 000.
+    /// Step limit: the loop stops with the reason "step limit" after this many FIRE
+    /// steps in all. Default 100 000.
     pub max_steps: u64,
-    /// Growth of the common scale of all grains in the first step, relative; the loop
-    /// then adapts it (faster after easy steps, slower after hard ones, capped at
-    /// `packing::RATE_MAX`). In `(0, 1]`; default 0.001.
-    pub growth_rate: f64,
+    /// When the target cannot be reached, the loop bisects the scale between the best
+    /// overlap-free one and the smallest jammed one until they are this close
+    /// (relative). In `(0, 0.1]`; default 10⁻³ (0.3 % of packing fraction).
+    pub jam_resolution: f64,
     /// Whether grains may rotate while packing. Default false: orientations stay as
-    /// drawn, as the scene's statistics ask.
+    /// drawn, as the scene's statistics ask; true packs denser but the orientations
+    /// written are where the grains turned to.
     pub rotation: bool,
 }
 
@@ -170,29 +178,8 @@ impl Default for PackingParams {
     fn default() -> Self {
         Self {
             max_steps: 100_000,
-            growth_rate: 1e-3,
+            jam_resolution: 1e-3,
             rotation: false,
-        }
-    }
-}
-
-/// What to write, and where (`[output]`).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct OutputSpec {
-    /// Output directory, relative to the current directory. Default `out`.
-    pub dir: PathBuf,
-    /// Write `grains.csv`. Default true.
-    pub grains_csv: bool,
-    /// Write `summary.json`. Default true.
-    pub summary_json: bool,
-}
-
-impl Default for OutputSpec {
-    fn default() -> Self {
-        Self {
-            dir: PathBuf::from("out"),
-            grains_csv: true,
-            summary_json: true,
         }
     }
 }

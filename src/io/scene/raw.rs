@@ -128,7 +128,7 @@ pub(crate) enum RawKind {
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawPacking {
     pub max_steps: Opt<u64>,
-    pub growth_rate: Opt<f64>,
+    pub jam_resolution: Opt<f64>,
     pub rotation: Opt<bool>,
 }
 
@@ -139,4 +139,23 @@ pub(crate) struct RawOutput {
     pub dir: Opt<String>,
     pub grains_csv: Opt<bool>,
     pub summary_json: Opt<bool>,
+    pub vtk: Opt<bool>,
+    pub vtk_resolution: Opt<i64>,
+    pub periodic_images: Opt<bool>,
+    pub centers: Opt<bool>,
+    pub rve: Opt<bool>,
+    /// An integer or `[nx, ny, nz]`: checked by validation.
+    pub rve_resolution: Opt<toml::Value>,
+    pub rve_voxel_size: Opt<f64>,
+    pub rve_fill: Opt<RawFill>,
+    pub sections_png: Opt<bool>,
+    pub statistics_png: Opt<bool>,
+}
+
+/// `output.rve_fill`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum RawFill {
+    Grains,
+    Matrix,
 }

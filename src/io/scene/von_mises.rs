@@ -62,12 +62,12 @@ impl VonMises {
     }
 
     /// The unnormalised density, scaled to 1 at the mean so that it cannot overflow.
-    fn density(&self, theta: f64) -> f64 {
+    pub(super) fn density(&self, theta: f64) -> f64 {
         (self.kappa * ((theta - self.mean).cos() - 1.0)).exp()
     }
 
     /// `∫ density` over `[a, b]`, on a grid fine enough to resolve the spread `1/√κ`.
-    fn integral(&self, a: f64, b: f64) -> f64 {
+    pub(super) fn integral(&self, a: f64, b: f64) -> f64 {
         if b <= a {
             return 0.0;
         }

@@ -2,19 +2,19 @@
 //! located.
 
 mod grain;
+mod output;
 
 use super::distribution::Distribution;
 use super::error::{SceneError, Source};
 use super::orientation::Orientation;
-use super::raw::{RawBoundary, RawBox, RawOutput, RawPacking, RawPhase, RawScene};
+use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use super::{
-    mean_grain_volume, Boundary, Domain, GrainCount, OutputSpec, PackingParams, Phase, Scene,
-    MAX_GRAINS, MAX_TARGET_FRACTION,
+    mean_grain_volume, Boundary, Domain, GrainCount, PackingParams, Phase, Scene, MAX_GRAINS,
+    MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
 use std::collections::HashSet;
-use std::path::PathBuf;
 use toml::de::{DeTable, Deserializer};
 use toml::Spanned;
 
@@ -50,7 +50,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         domain,
         phases,
         packing: packing(&src, raw.packing.as_ref())?,
-        output: output(&src, raw.output.as_ref())?,
+        output: output::output(&src, raw.output.as_ref(), &domain)?,
     })
 }
 
@@ -206,34 +206,14 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
         }
         params.max_steps = *v.get_ref();
     }
-    if let Some(v) = &raw.growth_rate {
-        if !(*v.get_ref() > 0.0 && *v.get_ref() <= 1.0) {
-            return Err(src.invalid_at("packing.growth_rate", v, "must lie in (0, 1]"));
+    if let Some(v) = &raw.jam_resolution {
+        if !(*v.get_ref() > 0.0 && *v.get_ref() <= 0.1) {
+            return Err(src.invalid_at("packing.jam_resolution", v, "must lie in (0, 0.1]"));
         }
-        params.growth_rate = *v.get_ref();
+        params.jam_resolution = *v.get_ref();
     }
     if let Some(v) = &raw.rotation {
         params.rotation = *v.get_ref();
     }
     Ok(params)
-}
-
-fn output(src: &Source, raw: Option<&Spanned<RawOutput>>) -> Result<OutputSpec, SceneError> {
-    let mut spec = OutputSpec::default();
-    let Some(raw) = raw.map(Spanned::get_ref) else {
-        return Ok(spec);
-    };
-    if let Some(dir) = &raw.dir {
-        if dir.get_ref().trim().is_empty() {
-            return Err(src.invalid_at("output.dir", dir, "must not be empty"));
-        }
-        spec.dir = PathBuf::from(dir.get_ref());
-    }
-    if let Some(v) = &raw.grains_csv {
-        spec.grains_csv = *v.get_ref();
-    }
-    if let Some(v) = &raw.summary_json {
-        spec.summary_json = *v.get_ref();
-    }
-    Ok(spec)
 }

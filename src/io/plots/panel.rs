@@ -1,0 +1,385 @@
+//! What each panel of the statistics figure shows: a phase's measured values and the
+//! target law they were drawn from.
+
+use super::{PlotError, VoxelSample};
+use crate::io::report::stats::{
+    aspect_ratio, equivalent_diameter, tilt_angle, Moments, VonMisesCdf,
+};
+use crate::io::scene::{rotation_column, Distribution, Orientation, Phase, VonMises};
+use crate::packing::PackedGrain;
+use std::f64::consts::PI;
+
+/// Points on a target density curve: at 400 points a curve over a 500-pixel axis has a
+/// vertex every pixel or so, and looks smooth.
+const CURVE_POINTS: usize = 400;
+
+/// Target curves are drawn within this many standard deviations of the untruncated
+/// law's centre: beyond 8, a normal density is below `e⁻³²` ≈ 10⁻¹⁴ of its peak.
+const CURVE_SIGMAS: f64 = 8.0;
+
+/// The angle `θ` (radians, in `[0, π/2]`) between the first semi-axis of a grain
+/// oriented by the unit quaternion `q` and the z axis: `acos |e·ẑ|`, with `e` column 0
+/// of the rotation, computed as `atan2(√(e_x² + e_y²), |e_z|)`, which keeps its accuracy
+/// near 0 where `acos` would turn a rounding of `e_z` into an angle of `√(2ε)`. The
+/// first semi-axis is the axis of revolution: the long axis of a
+/// prolate grain, the normal of an oblate one. An axis has no sign, hence `|e·ẑ|`.
+///
+/// For uniformly random orientations its density is `sin θ` (an isotropic axis).
+///
+/// ```
+/// use grainpack::io::plots::axis_polar_angle;
+/// use std::f64::consts::FRAC_PI_2;
+/// assert!((axis_polar_angle([1.0, 0.0, 0.0, 0.0]) - FRAC_PI_2).abs() < 1e-15); // x
+/// let h = std::f64::consts::FRAC_1_SQRT_2; // a quarter turn about y takes x to −z
+/// assert!(axis_polar_angle([h, 0.0, h, 0.0]).abs() < 1e-15);
+/// ```
+pub fn axis_polar_angle(q: [f64; 4]) -> f64 {
+    let e = rotation_column(q, 0);
+    e[0].hypot(e[1]).atan2(e[2].abs())
+}
+
+/// The law a panel compares its values with.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Target {
+    /// A density: `(x, f(x))` from the lower cutoff to the upper, starting and ending
+    /// at 0 so that truncation shows as a step.
+    Curve(Vec<(f64, f64)>),
+    /// A point mass (a constant or a fixed law).
+    Value(f64),
+}
+
+impl Target {
+    /// The smallest and largest `x` of the law.
+    pub(super) fn range(&self) -> (f64, f64) {
+        match self {
+            Self::Curve(points) => (
+                points.first().map_or(0.0, |p| p.0),
+                points.last().map_or(0.0, |p| p.0),
+            ),
+            Self::Value(v) => (*v, *v),
+        }
+    }
+}
+
+/// One panel: a quantity of one phase.
+#[derive(Debug, Clone)]
+pub(super) struct Panel {
+    /// Caption.
+    pub title: String,
+    /// x axis label, with the unit.
+    pub x_label: &'static str,
+    /// y axis label, with the unit.
+    pub y_label: &'static str,
+    /// Legend entry of the target law, without its figures.
+    pub law: String,
+    /// Mean and standard deviation of a target density, in the units of the x axis.
+    pub law_moments: Option<Moments>,
+    /// The target law.
+    pub target: Target,
+    /// The packed grains' values.
+    pub packed: Vec<f64>,
+    /// The voxel grains' values, when voxel samples were given.
+    pub voxel: Option<Vec<f64>>,
+}
+
+/// One row of the figure: a phase.
+#[derive(Debug, Clone)]
+pub(super) struct Row {
+    /// The row's heading.
+    pub title: String,
+    /// Equivalent diameter, aspect ratio, angle.
+    pub panels: [Panel; 3],
+}
+
+/// The rows of the figure, one per phase, after checking that every grain and voxel
+/// sample names a phase of the scene.
+pub(super) fn rows(
+    phases: &[Phase],
+    packed: &[PackedGrain],
+    voxel: Option<&[VoxelSample]>,
+) -> Result<Vec<Row>, PlotError> {
+    if let Some(g) = packed.iter().find(|g| g.phase >= phases.len()) {
+        return Err(PlotError::GrainPhase {
+            id: g.id,
+            phase: g.phase,
+            phases: phases.len(),
+        });
+    }
+    if let Some((index, s)) = voxel
+        .unwrap_or_default()
+        .iter()
+        .enumerate()
+        .find(|(_, s)| s.phase >= phases.len())
+    {
+        return Err(PlotError::VoxelPhase {
+            index,
+            phase: s.phase,
+            phases: phases.len(),
+        });
+    }
+    let total_volume: f64 = packed.iter().map(grain_volume).sum();
+    Ok(phases
+        .iter()
+        .enumerate()
+        .map(|(index, phase)| {
+            let grains: Vec<&PackedGrain> = packed.iter().filter(|g| g.phase == index).collect();
+            let samples: Option<Vec<&VoxelSample>> =
+                voxel.map(|v| v.iter().filter(|s| s.phase == index).collect());
+            let volume: f64 = grains.iter().map(|g| grain_volume(g)).sum();
+            let mut title = format!(
+                "phase {} \u{201c}{}\u{201d}: {} packed grains, {:.1} % of the grain volume \
+                 (target {:.1} %)",
+                index + 1,
+                phase.name,
+                grains.len(),
+                100.0
+                    * if total_volume > 0.0 {
+                        volume / total_volume
+                    } else {
+                        0.0
+                    },
+                100.0 * phase.share,
+            );
+            if let Some(s) = &samples {
+                title += &format!(", {} voxel grains", s.len());
+            }
+            let voxel_values = |f: fn(&VoxelSample) -> Option<f64>| {
+                samples
+                    .as_ref()
+                    .map(|s| s.iter().filter_map(|s| f(s)).collect::<Vec<f64>>())
+            };
+            let diameter = Panel {
+                title: "equivalent diameter".into(),
+                x_label: "equivalent diameter (box units)",
+                y_label: "probability density (1/box unit)",
+                law: law_name(&phase.size),
+                law_moments: law_moments(&phase.size),
+                target: distribution_target(&phase.size),
+                packed: grains
+                    .iter()
+                    .map(|g| equivalent_diameter(g.semi_axes))
+                    .collect(),
+                voxel: voxel_values(|s| Some(s.equivalent_diameter)),
+            };
+            let aspect = Panel {
+                title: "aspect ratio".into(),
+                x_label: "aspect ratio a1/a2 (dimensionless)",
+                y_label: "probability density",
+                law: law_name(&phase.aspect_ratio),
+                law_moments: law_moments(&phase.aspect_ratio),
+                target: distribution_target(&phase.aspect_ratio),
+                packed: grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect(),
+                voxel: voxel_values(|s| Some(s.aspect_ratio)),
+            };
+            let mut angle = angle_panel(&phase.orientation, &grains);
+            angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
+            Row {
+                title,
+                panels: [diameter, aspect, angle],
+            }
+        })
+        .collect())
+}
+
+/// `(4π/3) a1 a2 a3`.
+fn grain_volume(g: &PackedGrain) -> f64 {
+    4.0 / 3.0 * PI * g.semi_axes.iter().product::<f64>()
+}
+
+/// The density curve of a law, or its value for a constant.
+///
+/// The curve is drawn on the support, clipped to [`CURVE_SIGMAS`] standard deviations
+/// of the untruncated law about its centre so that a narrow law between wide cutoffs
+/// still gets its points where its mass is.
+fn distribution_target(law: &Distribution) -> Target {
+    let (min, max) = law.support();
+    let (lo, hi) = match *law {
+        Distribution::Constant { value } => return Target::Value(value),
+        Distribution::Uniform { .. } => (min, max),
+        Distribution::Normal { mean, std, .. } => (
+            min.max(mean - CURVE_SIGMAS * std),
+            max.min(mean + CURVE_SIGMAS * std),
+        ),
+        Distribution::LogNormal {
+            sigma, scale, loc, ..
+        } => (
+            min.max(loc + scale * (-CURVE_SIGMAS * sigma).exp()),
+            max.min(loc + scale * (CURVE_SIGMAS * sigma).exp()),
+        ),
+    };
+    let (lo, hi) = if lo < hi { (lo, hi) } else { (min, max) };
+    Target::Curve(curve(lo, hi, |x| law.pdf(x)))
+}
+
+/// The window of a tilt law's curve (radians): its window, clipped to
+/// [`CURVE_SIGMAS`] spreads `1/√κ` about the mean.
+fn tilt_curve_window(law: &VonMises) -> (f64, f64) {
+    let (lo, hi) = law.window();
+    let half = CURVE_SIGMAS / law.kappa.sqrt();
+    let (clo, chi) = (lo.max(law.mean - half), hi.min(law.mean + half));
+    if clo < chi {
+        (clo, chi)
+    } else {
+        (lo, hi)
+    }
+}
+
+/// `(x, f(x))` at [`CURVE_POINTS`] points on `[lo, hi]`, between `(lo, 0)` and `(hi, 0)`.
+fn curve(lo: f64, hi: f64, f: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
+    let mut points = Vec::with_capacity(CURVE_POINTS + 2);
+    points.push((lo, 0.0));
+    for k in 0..CURVE_POINTS {
+        let x = lo + (hi - lo) * k as f64 / (CURVE_POINTS - 1) as f64;
+        points.push((x, f(x)));
+    }
+    points.push((hi, 0.0));
+    points
+}
+
+/// The legend entry of a law: its family.
+fn law_name(law: &Distribution) -> String {
+    format!("target {}", law.family())
+}
+
+/// Mean and standard deviation of a law with a density (`None` for a constant).
+fn law_moments(law: &Distribution) -> Option<Moments> {
+    match law {
+        Distribution::Constant { .. } => None,
+        _ => Some(Moments {
+            mean: law.mean(),
+            std: law.std(),
+        }),
+    }
+}
+
+/// The third panel. A tilt law: the tilt angle against the von Mises density. Any other
+/// orientation: the angle of the first semi-axis to z ([`axis_polar_angle`]), against
+/// `sin θ` for random orientations and as a single value for aligned or fixed ones.
+/// Angles are shown in degrees, so densities are per degree.
+fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
+    let per_degree = PI / 180.0;
+    let degrees = |m: Moments| Moments {
+        mean: m.mean.to_degrees(),
+        std: m.std.to_degrees(),
+    };
+    let polar: Vec<f64> = grains
+        .iter()
+        .map(|g| axis_polar_angle(g.quaternion).to_degrees())
+        .collect();
+    let polar_panel = |law: &str, law_moments: Option<Moments>, target: Target| Panel {
+        title: "first axis to z".into(),
+        x_label: "angle of the first axis to z (degrees)",
+        y_label: "probability density (1/degree)",
+        law: law.into(),
+        law_moments,
+        target,
+        packed: polar.clone(),
+        voxel: None,
+    };
+    match *orientation {
+        Orientation::Tilt { axis, angle } => {
+            let (lo, hi) = tilt_curve_window(&angle);
+            // One quadrature for the normalisation, not one per point: the density at
+            // a reference angle times the ratio e^{κ (cos(θ − μ) − cos(θ_ref − μ))}.
+            let reference = angle.mean.clamp(lo, hi);
+            let scale = angle.pdf(reference) * per_degree;
+            let shape = |t: f64| angle.kappa * (t - angle.mean).cos();
+            Panel {
+                title: format!("tilt angle about {}", axis_name(axis.index())),
+                x_label: "tilt angle (degrees)",
+                y_label: "probability density (1/degree)",
+                law: format!("target von Mises, \u{3ba} = {}", angle.kappa),
+                law_moments: Some(degrees(VonMisesCdf::new(&angle).moments())),
+                target: Target::Curve(curve(lo.to_degrees(), hi.to_degrees(), |t| {
+                    scale * (shape(t.to_radians()) - shape(reference)).exp()
+                })),
+                packed: grains
+                    .iter()
+                    .map(|g| tilt_angle(g.quaternion, axis, &angle).to_degrees())
+                    .collect(),
+                voxel: None,
+            }
+        }
+        Orientation::Random => {
+            // θ with density sin θ on [0, π/2]: E θ = 1 rad, E θ² = π − 2.
+            let moments = degrees(Moments {
+                mean: 1.0,
+                std: (PI - 3.0).sqrt(),
+            });
+            polar_panel(
+                "isotropic, sin \u{3b8}",
+                Some(moments),
+                Target::Curve(curve(0.0, 90.0, |t| t.to_radians().sin() * per_degree)),
+            )
+        }
+        Orientation::Aligned { axis } => {
+            let value = axis[0].hypot(axis[1]).atan2(axis[2].abs()).to_degrees();
+            polar_panel("target aligned", None, Target::Value(value))
+        }
+        Orientation::Fixed { quaternion } => {
+            let value = axis_polar_angle(quaternion).to_degrees();
+            polar_panel("target fixed", None, Target::Value(value))
+        }
+    }
+}
+
+/// `"x"`, `"y"` or `"z"`.
+fn axis_name(index: usize) -> &'static str {
+    ["x", "y", "z"][index.min(2)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The isotropic density integrates to 1 over [0°, 90°]: the trapezoid rule on 399
+    /// intervals of sin errs by (π/2)³/(12·399²) ≈ 2.4e-6 (the drops to 0 at the ends
+    /// add no area).
+    #[test]
+    fn isotropic_curve_is_a_density_in_degrees() {
+        let a = area(&angle_panel(&Orientation::Random, &[]).target);
+        assert!((a - 1.0).abs() < 1e-5, "{a}");
+    }
+
+    /// The area under a curve by the trapezoid rule, its end points at 0 included.
+    fn area(target: &Target) -> f64 {
+        let Target::Curve(points) = target else {
+            panic!("a density")
+        };
+        points
+            .windows(2)
+            .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+            .sum()
+    }
+
+    /// A law far narrower than its cutoffs: its curve still integrates to 1. With 400
+    /// points over ±8 spreads, the trapezoid rule is good to ~1e-4 of the mass.
+    #[test]
+    fn narrow_laws_get_their_curve_points_where_the_mass_is() {
+        let normal = Distribution::Normal {
+            mean: 5.0,
+            std: 0.001,
+            min: 1.0,
+            max: 10.0,
+        };
+        let a = area(&distribution_target(&normal));
+        assert!((a - 1.0).abs() < 1e-3, "{a}");
+        let tilt = Orientation::Tilt {
+            axis: crate::io::scene::Axis::Z,
+            angle: VonMises::new(1.0, 1e6),
+        };
+        let a = area(&angle_panel(&tilt, &[]).target);
+        assert!((a - 1.0).abs() < 1e-3, "{a}");
+    }
+
+    #[test]
+    fn aligned_along_z_is_a_point_mass_at_zero_degrees() {
+        let panel = angle_panel(
+            &Orientation::Aligned {
+                axis: [0.0, 0.0, 1.0],
+            },
+            &[],
+        );
+        assert_eq!(panel.target, Target::Value(0.0));
+    }
+}

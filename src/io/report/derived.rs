@@ -1,0 +1,212 @@
+//! The outputs derived from the packed grains: the voxel RVE (`rve.vti`, its per-grain
+//! table `rve_grains.csv` and `sections.png`) and the statistics figure
+//! (`statistics.png`). The RVE's totals go into the summary.
+
+use super::{OutputFiles, ReportError, Summary};
+use crate::io::plots::{render_statistics_png, VoxelSample};
+use crate::io::report::stats::{equivalent_diameter, tilt_angle};
+use crate::io::scene::{rotation_column, Domain, Orientation, OutputSpec, Phase, RveFill};
+use crate::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill, VoxelReport};
+use crate::packing::PackedGrain;
+use serde::Serialize;
+use std::io;
+use std::time::Instant;
+
+/// File name of the voxel RVE.
+pub const RVE_VTI: &str = "rve.vti";
+/// File name of the RVE's per-grain table.
+pub const RVE_GRAINS_CSV: &str = "rve_grains.csv";
+/// File name of the RVE's mid-sections.
+pub const SECTIONS_PNG: &str = "sections.png";
+/// File name of the statistics figure.
+pub const STATISTICS_PNG: &str = "statistics.png";
+
+/// The RVE in `summary.json`: its grid, and how well the voxel grains render the
+/// ellipsoids (per grain in `rve_grains.csv`).
+#[derive(Debug, Clone, Serialize)]
+pub struct RveSummary {
+    /// Cells along x, y, z.
+    pub cells: [usize; 3],
+    /// `"grains"` or `"matrix"`.
+    pub fill: Fill,
+    /// Materials in `rve.vti`: one per grain (material k is grain k), plus the matrix
+    /// (material = number of grains) when `fill = "matrix"`.
+    pub materials: usize,
+    /// Largest `|voxel volume / ellipsoid volume − 1|` over the grains.
+    pub max_abs_volume_deviation: f64,
+    /// Mean of the same.
+    pub mean_abs_volume_deviation: f64,
+    /// Grains whose voxels form more than one face-connected piece (periodic-aware).
+    pub split_grains: usize,
+    /// Their ids.
+    pub split_grain_ids: Vec<u32>,
+    /// Voxels outside their grain's largest piece, over all grains.
+    pub stray_voxels: u64,
+    /// Grains with no voxel at all (smaller than a voxel).
+    pub empty_grains: usize,
+    /// Share of the voxels that are matrix (0 for `fill = "grains"`).
+    pub matrix_fraction: f64,
+    /// Seconds to voxelise.
+    pub voxelise_seconds: f64,
+}
+
+impl RveSummary {
+    fn new(report: &VoxelReport, grains: usize, seconds: f64) -> Self {
+        Self {
+            cells: report.cells,
+            fill: report.fill,
+            materials: grains + usize::from(report.fill == Fill::Matrix),
+            max_abs_volume_deviation: report.max_abs_volume_deviation,
+            mean_abs_volume_deviation: report.mean_abs_volume_deviation,
+            split_grains: report.split_grains.len(),
+            split_grain_ids: report.split_grains.clone(),
+            stray_voxels: report.stray_voxels,
+            empty_grains: report.empty_grains.len(),
+            matrix_fraction: report.matrix_fraction,
+            voxelise_seconds: seconds,
+        }
+    }
+}
+
+/// Writes the RVE files and the statistics figure asked for by `output`, and records
+/// the RVE's totals in `summary.rve`.
+pub fn write_derived(
+    output: &OutputSpec,
+    phases: &[Phase],
+    domain: &Domain,
+    grains: &[PackedGrain],
+    summary: &mut Summary,
+    files: &mut OutputFiles,
+) -> Result<(), ReportError> {
+    let mut samples = None;
+    if let Some(rve) = &output.rve {
+        let fill = match rve.fill {
+            RveFill::Grains => Fill::Grains,
+            RveFill::Matrix => Fill::Matrix,
+        };
+        let start = Instant::now();
+        let grid = voxelise(grains, domain, rve.cells, fill, phases.len())
+            .map_err(|e| files.error(RVE_VTI, io::Error::other(e)))?;
+        let seconds = start.elapsed().as_secs_f64();
+        files.write(RVE_VTI, |w| write_vti(&grid, w))?;
+        let report = grain_report(&grid, grains)
+            .map_err(|e| files.error(RVE_GRAINS_CSV, io::Error::other(e)))?;
+        files.write(RVE_GRAINS_CSV, |w| write_rve_grains(w, &report))?;
+        if rve.sections_png {
+            let path = files.path(SECTIONS_PNG);
+            write_sections_png(&grid, &path)
+                .map_err(|e| files.error(SECTIONS_PNG, io::Error::other(e)))?;
+            files.record(path);
+        }
+        summary.rve = Some(RveSummary::new(&report, grains.len(), seconds));
+        samples = Some(voxel_samples(&report, grains, phases));
+    }
+    if output.statistics_png {
+        files.write(STATISTICS_PNG, |w| {
+            render_statistics_png(w, phases, grains, samples.as_deref()).map_err(io::Error::other)
+        })?;
+    }
+    Ok(())
+}
+
+/// `id,phase,voxels,voxel_volume,ellipsoid_volume,volume_deviation,pieces,stray_voxels`.
+fn write_rve_grains(out: &mut dyn io::Write, report: &VoxelReport) -> io::Result<()> {
+    let mut w = csv::Writer::from_writer(out);
+    w.write_record([
+        "id",
+        "phase",
+        "voxels",
+        "voxel_volume",
+        "ellipsoid_volume",
+        "volume_deviation",
+        "pieces",
+        "stray_voxels",
+    ])?;
+    for g in &report.grains {
+        w.write_record([
+            g.id.to_string(),
+            g.phase.to_string(),
+            g.voxels.to_string(),
+            format!("{:.9e}", g.voxel_volume),
+            format!("{:.9e}", g.ellipsoid_volume),
+            format!("{:.6e}", g.volume_deviation),
+            g.pieces.to_string(),
+            g.stray_voxels.to_string(),
+        ])?;
+    }
+    w.flush()
+}
+
+/// The voxel grains measured like the packed ones: the equivalent diameter of the
+/// voxel volume, and the aspect ratio `a1/a2` and angle from the voxel grain's
+/// moment ellipsoid, whose axis closest to the packed grain's first axis plays `a1`.
+fn voxel_samples(
+    report: &VoxelReport,
+    grains: &[PackedGrain],
+    phases: &[Phase],
+) -> Vec<VoxelSample> {
+    report
+        .grains
+        .iter()
+        .zip(grains)
+        .filter_map(|(v, g)| {
+            let shape = v.shape.as_ref()?;
+            let first = rotation_column(g.quaternion, 0);
+            // The moment axis most parallel to the packed first axis.
+            let k = (0..3)
+                .max_by(|&a, &b| {
+                    let c = |k: usize| dot(&shape.axes[k], &first).abs();
+                    c(a).total_cmp(&c(b))
+                })
+                .unwrap_or(0);
+            let others: Vec<f64> = (0..3)
+                .filter(|&m| m != k)
+                .map(|m| shape.semi_axes[m])
+                .collect();
+            let a1 = shape.semi_axes[k];
+            let a2 = (others[0] * others[1]).sqrt();
+            let axis = shape.axes[k];
+            let axis = if dot(&axis, &first) < 0.0 {
+                axis.map(|x| -x)
+            } else {
+                axis
+            };
+            let tilt = match &phases.get(g.phase)?.orientation {
+                Orientation::Tilt {
+                    axis: tilt_axis,
+                    angle,
+                } => Some(tilt_angle(quaternion_from_axis(axis), *tilt_axis, angle)),
+                _ => Some(axis[2].abs().min(1.0).acos()),
+            };
+            Some(VoxelSample {
+                phase: g.phase,
+                equivalent_diameter: equivalent_diameter_of_volume(v.voxel_volume),
+                aspect_ratio: a1 / a2,
+                tilt,
+            })
+        })
+        .collect()
+}
+
+fn equivalent_diameter_of_volume(volume: f64) -> f64 {
+    // A sphere of that volume: radius (3V/4π)^(1/3); `equivalent_diameter` of its axes.
+    let r = (3.0 * volume / (4.0 * std::f64::consts::PI)).cbrt();
+    equivalent_diameter([r, r, r])
+}
+
+/// A unit quaternion whose first column is `axis` (the shortest rotation from x̂).
+fn quaternion_from_axis(axis: [f64; 3]) -> [f64; 4] {
+    // q = (1 + x̂·a, x̂ × a) normalised; x̂ × a = (0, −a_z, a_y).
+    let w = 1.0 + axis[0];
+    if w <= 0.0 {
+        // a = −x̂: half a turn about z.
+        return [0.0, 0.0, 0.0, 1.0];
+    }
+    let q = [w, 0.0, -axis[2], axis[1]];
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    q.map(|x| x / n)
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}

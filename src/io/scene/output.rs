@@ -1,0 +1,206 @@
+//! What a run writes (`[output]`): which files, and the few parameters each takes.
+//!
+//! Every key is validated once, in `validate::output`; the writers read these typed
+//! values and check nothing again. `docs/config.md` documents each key and default.
+
+use std::path::PathBuf;
+
+/// Default subdivision level of the grain surfaces in `grains.vtu`: 320 triangles
+/// per grain (see [`VtkSpec::triangles_per_grain`]).
+pub const DEFAULT_VTK_RESOLUTION: u32 = 2;
+
+/// The coarsest subdivision level accepted for `vtk_resolution`: 80 triangles per
+/// grain. Level 0, the bare icosahedron, holds only 61 % of the ellipsoid's volume.
+pub const MIN_VTK_RESOLUTION: u32 = 1;
+
+/// The finest subdivision level accepted for `vtk_resolution`: 20·4⁶ = 81 920
+/// triangles per grain, already far past what a screen shows of one grain.
+pub const MAX_VTK_RESOLUTION: u32 = 6;
+
+/// Cells of the voxel RVE along the box's longest edge when neither `rve_resolution`
+/// nor `rve_voxel_size` is given; the other edges get proportionally many.
+pub const DEFAULT_RVE_CELLS: usize = 64;
+
+/// The most cells the voxel RVE may have along one edge.
+pub const MAX_RVE_CELLS_PER_EDGE: usize = 4096;
+
+/// The most cells the voxel RVE may have in all: 2³⁰ (1024³), about 8 GiB for its two
+/// 32-bit integer fields.
+pub const MAX_RVE_CELLS: u64 = 1 << 30;
+
+/// What to write, and where (`[output]`). Files are named by the writers:
+/// `grains.csv`, `grains.vtu`, `centers.vtp`, `rve.vti`, the PNGs, `summary.json`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutputSpec {
+    /// Output directory, relative to the current directory. Default `out`.
+    pub dir: PathBuf,
+    /// Write `grains.csv`. Default true.
+    pub grains_csv: bool,
+    /// Write `summary.json`. Default true.
+    pub summary_json: bool,
+    /// Write the grains' surfaces to `grains.vtu` (`vtk = true`, the default), with
+    /// these parameters; `None` for `vtk = false`.
+    pub vtk: Option<VtkSpec>,
+    /// Write the grains' centres and shape tensors to `centers.vtp`. Default true.
+    pub centers: bool,
+    /// Write a voxel RVE to `rve.vti` (`rve = true`), with these parameters; `None`
+    /// (the default) for no RVE.
+    pub rve: Option<RveSpec>,
+    /// Write PNG plots of the grain statistics against their targets. Default true.
+    pub statistics_png: bool,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            dir: PathBuf::from("out"),
+            grains_csv: true,
+            summary_json: true,
+            vtk: Some(VtkSpec::default()),
+            centers: true,
+            rve: None,
+            statistics_png: true,
+        }
+    }
+}
+
+impl OutputSpec {
+    /// Whether any file is to be written (and so the directory is needed).
+    pub fn writes_anything(&self) -> bool {
+        self.grains_csv
+            || self.summary_json
+            || self.vtk.is_some()
+            || self.centers
+            || self.rve.is_some()
+            || self.statistics_png
+    }
+}
+
+/// Parameters of `grains.vtu`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct VtkSpec {
+    /// Subdivision level of the icosphere each grain's surface is mapped from
+    /// (`vtk_resolution`), in `[MIN_VTK_RESOLUTION, MAX_VTK_RESOLUTION]`; default
+    /// [`DEFAULT_VTK_RESOLUTION`].
+    pub resolution: u32,
+    /// Also write, in a periodic box, copies of the grains that cross a face, shifted
+    /// by ±L to the far side (`periodic_images`). Default false; only a periodic box
+    /// accepts true.
+    pub periodic_images: bool,
+}
+
+impl Default for VtkSpec {
+    fn default() -> Self {
+        Self {
+            resolution: DEFAULT_VTK_RESOLUTION,
+            periodic_images: false,
+        }
+    }
+}
+
+impl VtkSpec {
+    /// Triangles of one grain's surface: `20·4^resolution` (the icosahedron's 20
+    /// faces, each cut into 4 per level).
+    pub fn triangles_per_grain(&self) -> usize {
+        20 << (2 * self.resolution)
+    }
+
+    /// Points of one grain's surface: `10·4^resolution + 2`.
+    pub fn points_per_grain(&self) -> usize {
+        (10 << (2 * self.resolution)) + 2
+    }
+}
+
+/// Parameters of the voxel RVE `rve.vti`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RveSpec {
+    /// Cells along x, y, z, each in `[1, MAX_RVE_CELLS_PER_EDGE]`, at most
+    /// [`MAX_RVE_CELLS`] in all: from `rve_resolution`, from `rve_voxel_size`
+    /// (`round(L/size)`, at least 1), or [`DEFAULT_RVE_CELLS`] along the longest edge
+    /// and proportionally many along the others.
+    pub cells: [usize; 3],
+    /// What the voxels outside every grain become (`rve_fill`).
+    pub fill: RveFill,
+    /// Also write PNG sections of the RVE (`sections_png`). Default true.
+    pub sections_png: bool,
+}
+
+impl RveSpec {
+    /// Edge lengths of a voxel in a box of edges `size`: `L/N` along each axis.
+    pub fn spacing(&self, size: [f64; 3]) -> [f64; 3] {
+        [0, 1, 2].map(|i| size[i] / self.cells[i] as f64)
+    }
+
+    /// Number of cells in all.
+    pub fn cell_count(&self) -> u64 {
+        self.cells.iter().map(|&n| n as u64).product()
+    }
+}
+
+/// What the voxels of the RVE outside every grain become (`rve_fill`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum RveFill {
+    /// `"grains"` (the default): every voxel belongs to a grain; the space between
+    /// grains is shared out among them.
+    #[default]
+    Grains,
+    /// `"matrix"`: voxels outside every grain belong to one matrix material.
+    Matrix,
+}
+
+/// Cells along each edge of a box of edges `size` with `longest` cells along its
+/// longest edge and proportionally many along the others, `round(longest·Lᵢ/L_max)`,
+/// at least 1, so that voxels are as near cubes as whole numbers allow.
+pub fn proportional_cells(longest: usize, size: [f64; 3]) -> [usize; 3] {
+    let l_max = size.iter().copied().fold(0.0, f64::max);
+    size.map(|l| ((longest as f64 * l / l_max).round() as usize).clamp(1, longest.max(1)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn proportional_cells_put_the_count_on_the_longest_edge_and_never_zero() {
+        assert_eq!(proportional_cells(64, [10.0, 10.0, 10.0]), [64; 3]);
+        assert_eq!(proportional_cells(64, [20.0, 10.0, 5.0]), [64, 32, 16]);
+        // A thin slab still gets one cell across.
+        assert_eq!(proportional_cells(10, [100.0, 100.0, 1.0]), [10, 10, 1]);
+        // 64 · 3/7 = 27.43 rounds down, 64 · 5/7 = 45.71 up.
+        assert_eq!(proportional_cells(64, [3.0, 7.0, 5.0]), [27, 64, 46]);
+    }
+
+    #[test]
+    fn spacing_times_cells_is_the_box() {
+        let rve = RveSpec {
+            cells: [27, 64, 46],
+            fill: RveFill::Grains,
+            sections_png: true,
+        };
+        let size = [3.0, 7.0, 5.0];
+        let h = rve.spacing(size);
+        for i in 0..3 {
+            // One rounding in the division and one in the product: 2 ulp.
+            let back = h[i] * rve.cells[i] as f64;
+            assert!((back - size[i]).abs() <= 2.0 * f64::EPSILON * size[i]);
+        }
+        assert_eq!(rve.cell_count(), 27 * 64 * 46);
+    }
+
+    #[test]
+    fn triangle_and_point_counts_follow_the_subdivision() {
+        let at = |resolution| VtkSpec {
+            resolution,
+            periodic_images: false,
+        };
+        assert_eq!(at(0).triangles_per_grain(), 20);
+        assert_eq!(at(0).points_per_grain(), 12);
+        assert_eq!(at(2).triangles_per_grain(), 320);
+        assert_eq!(at(2).points_per_grain(), 162);
+        // Euler: V − E + F = 2 with E = 3F/2.
+        for r in 0..=MAX_VTK_RESOLUTION {
+            let (v, f) = (at(r).points_per_grain(), at(r).triangles_per_grain());
+            assert_eq!(v + f - 3 * f / 2, 2);
+        }
+    }
+}

@@ -1,0 +1,159 @@
+//! How faithfully the voxels render each grain: volume, pieces, and the ellipsoid of
+//! the same second moments.
+
+use super::moments::moments;
+use super::pieces::count_pieces;
+use super::runs::Runs;
+use super::{Fill, VoxelError, VoxelGrid};
+use crate::packing::PackedGrain;
+
+use rayon::prelude::*;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// One grain as the voxels show it, next to the ellipsoid it came from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GrainVoxels {
+    /// The grain's id.
+    pub id: u32,
+    /// Its material number (its index in the grains given).
+    pub material: u32,
+    /// Its phase index.
+    pub phase: usize,
+    /// Number of voxels of this material.
+    pub voxels: u64,
+    /// `voxels ×` the volume of a voxel.
+    pub voxel_volume: f64,
+    /// `4/3 π a1 a2 a3`.
+    pub ellipsoid_volume: f64,
+    /// `(voxel_volume − ellipsoid_volume) / ellipsoid_volume`.
+    pub volume_deviation: f64,
+    /// 6-connected pieces, across periodic faces (1 for a whole grain, 0 for none).
+    pub pieces: u32,
+    /// Voxels outside the largest piece (0 for a grain in one piece).
+    pub stray_voxels: u64,
+    /// `(6 V / π)^⅓` of the ellipsoid.
+    pub ellipsoid_equivalent_diameter: f64,
+    /// Ellipsoid semi-axes, largest first.
+    pub ellipsoid_semi_axes: [f64; 3],
+    /// Largest over smallest ellipsoid semi-axis.
+    pub ellipsoid_aspect_ratio: f64,
+    /// The voxel grain's shape from its moments; `None` when it has no voxel.
+    pub shape: Option<VoxelShape>,
+}
+
+/// The solid ellipsoid with the same volume centroid and second moments as a voxel
+/// grain (each voxel a uniform cube, so its own moment `h²/12` is included).
+///
+/// A solid ellipsoid's covariance has eigenvalues `a_k² / 5`, so `a_k = √(5 λ_k)`.
+/// Voxels are unwrapped around the grain centre (nearest image, per axis): a grain
+/// whose voxels span more than half the box along an axis is not unwrapped correctly.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct VoxelShape {
+    /// `(6 V / π)^⅓` of the voxel volume.
+    pub equivalent_diameter: f64,
+    /// Semi-axes `√(5 λ_k)`, largest first.
+    pub semi_axes: [f64; 3],
+    /// Unit principal directions: `axes[k]` goes with `semi_axes[k]`.
+    pub axes: [[f64; 3]; 3],
+    /// `semi_axes[0] / semi_axes[2]`.
+    pub aspect_ratio: f64,
+    /// Angle in degrees (0–90) between the major axes of the voxel grain and of the
+    /// ellipsoid; meaningless for a grain with two equal largest semi-axes.
+    pub major_axis_angle_deg: f64,
+    /// Distance from the voxel centroid to the grain's centre.
+    pub centroid_offset: f64,
+}
+
+/// Every grain plus the totals.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct VoxelReport {
+    /// Cells along x, y, z.
+    pub cells: [usize; 3],
+    /// How the gaps were filled.
+    pub fill: Fill,
+    /// Largest `|volume_deviation|` over the grains.
+    pub max_abs_volume_deviation: f64,
+    /// Mean `|volume_deviation|` over the grains.
+    pub mean_abs_volume_deviation: f64,
+    /// Ids of the grains in more than one piece.
+    pub split_grains: Vec<u32>,
+    /// Voxels outside their grain's largest piece, summed over the grains.
+    pub stray_voxels: u64,
+    /// Ids of the grains without a voxel.
+    pub empty_grains: Vec<u32>,
+    /// Fraction of the voxels that are matrix.
+    pub matrix_fraction: f64,
+    /// Sum of the ellipsoid volumes over the box volume.
+    pub ellipsoid_fraction: f64,
+    /// Per grain, in material order.
+    pub grains: Vec<GrainVoxels>,
+}
+
+/// Compares each voxel grain of `grid` with its ellipsoid. `grains` must be the slice
+/// the grid was made from (material `k` is `grains[k]`).
+pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelReport, VoxelError> {
+    if grains.len() != grid.grains {
+        return Err(VoxelError::GrainCountMismatch {
+            grid: grid.grains,
+            given: grains.len(),
+        });
+    }
+    let runs = Runs::new(grid);
+    let moments = moments(grid, grains, &runs);
+    let pieces = count_pieces(grid, &runs, grains.len());
+    let h = grid.spacing();
+    let vv = grid.voxel_volume();
+    let box_volume: f64 = grid.size.iter().product();
+    let rows: Vec<GrainVoxels> = grains
+        .iter()
+        .zip(&moments)
+        .zip(&pieces)
+        .enumerate()
+        .map(|(k, ((g, m), p))| {
+            let ellipsoid_volume = 4.0 / 3.0 * PI * g.semi_axes.iter().product::<f64>();
+            let voxel_volume = m.count as f64 * vv;
+            let mut axes = g.semi_axes;
+            axes.sort_by(|a, b| b.total_cmp(a));
+            GrainVoxels {
+                id: g.id,
+                material: k as u32,
+                phase: g.phase,
+                voxels: m.count,
+                voxel_volume,
+                ellipsoid_volume,
+                volume_deviation: (voxel_volume - ellipsoid_volume) / ellipsoid_volume,
+                pieces: p.count,
+                stray_voxels: m.count - p.largest,
+                ellipsoid_equivalent_diameter: equivalent_diameter(ellipsoid_volume),
+                ellipsoid_semi_axes: axes,
+                ellipsoid_aspect_ratio: axes[0] / axes[2],
+                shape: m.shape(g, h, voxel_volume),
+            }
+        })
+        .collect();
+    let deviations = rows.iter().map(|r| r.volume_deviation.abs());
+    let matrix = grid.matrix_material();
+    let matrix_voxels = grid.material.par_iter().filter(|&&m| m == matrix).count();
+    Ok(VoxelReport {
+        cells: grid.cells,
+        fill: grid.fill,
+        max_abs_volume_deviation: deviations.clone().fold(0.0, f64::max),
+        mean_abs_volume_deviation: deviations.sum::<f64>() / rows.len().max(1) as f64,
+        split_grains: rows.iter().filter(|r| r.pieces > 1).map(|r| r.id).collect(),
+        stray_voxels: rows.iter().map(|r| r.stray_voxels).sum(),
+        empty_grains: rows
+            .iter()
+            .filter(|r| r.voxels == 0)
+            .map(|r| r.id)
+            .collect(),
+        matrix_fraction: matrix_voxels as f64 / grid.len() as f64,
+        ellipsoid_fraction: rows.iter().map(|r| r.ellipsoid_volume).sum::<f64>() / box_volume,
+        grains: rows,
+    })
+}
+
+/// `(6 V / π)^⅓`: the diameter of the sphere of volume `V`.
+pub(super) fn equivalent_diameter(volume: f64) -> f64 {
+    (6.0 * volume / PI).cbrt()
+}

@@ -1,0 +1,113 @@
+//! `centers.vtp`: one point per grain, with its shape as tensors for glyphs.
+
+use super::{encode, grain_id, phase_index, rotation};
+use crate::packing::PackedGrain;
+use std::io::{self, Write};
+use vtkio::model::{Attribute, Attributes, DataSet, IOBuffer, PolyDataPiece, VertexNumbers};
+
+/// `R diag(a₁^p, a₂^p, a₃^p) Rᵀ` in row-major order, for column `k` of R along
+/// semi-axis `k`: `p = 1` gives the shape tensor, `p = 2` the quadratic form.
+fn tensor(grain: &PackedGrain, power: i32) -> [f64; 9] {
+    let r = rotation(grain.quaternion);
+    let d = grain.semi_axes.map(|a| a.powi(power));
+    let mut t = [0.0; 9];
+    for i in 0..3 {
+        for j in i..3 {
+            // Mirrored, so that the tensor is exactly symmetric.
+            t[3 * i + j] = (0..3).map(|k| d[k] * r[k][i] * r[k][j]).sum();
+            t[3 * j + i] = t[3 * i + j];
+        }
+    }
+    t
+}
+
+/// The shape tensor `S = R diag(a₁, a₂, a₃) Rᵀ`, row-major: its eigenvalues are the
+/// semi-axes and its eigenvectors their directions, so a unit sphere mapped by `S` is
+/// the grain (centred at the origin). This is what ParaView's Tensor Glyph draws.
+pub fn shape_tensor(grain: &PackedGrain) -> [f64; 9] {
+    tensor(grain, 1)
+}
+
+/// The quadratic form `Q = R diag(a₁², a₂², a₃²) Rᵀ = S²`, row-major: the grain is
+/// `{x : (x − c)ᵀ Q⁻¹ (x − c) ≤ 1}`, as in the contact layer.
+pub fn quadratic_form(grain: &PackedGrain) -> [f64; 9] {
+    tensor(grain, 2)
+}
+
+/// Writes `centers.vtp` (VTK XML PolyData, binary base64, float64): one point per
+/// grain at its centre, each a vertex cell, with point data `grain_id`, `phase`,
+/// `semi_axes` (3 components), `shape_tensor` ([`shape_tensor`], 9 components, the
+/// active tensors) and `quadratic_form` ([`quadratic_form`], 9 components).
+pub fn write_centers_vtp(out: &mut dyn Write, grains: &[PackedGrain]) -> io::Result<()> {
+    let n = grains.len();
+    let mut ids = Vec::with_capacity(n);
+    let mut phases = Vec::with_capacity(n);
+    for g in grains {
+        ids.push(grain_id(g)?);
+        phases.push(phase_index(g)?);
+    }
+    let piece = PolyDataPiece {
+        points: IOBuffer::new(grains.iter().flat_map(|g| g.centre).collect::<Vec<f64>>()),
+        verts: Some(VertexNumbers::XML {
+            connectivity: (0..n as u64).collect(),
+            offsets: (1..=n as u64).collect(),
+        }),
+        data: Attributes {
+            point: vec![
+                Attribute::scalars("grain_id", 1).with_data(ids),
+                Attribute::generic("phase", 1).with_data(phases),
+                Attribute::generic("semi_axes", 3).with_data(
+                    grains
+                        .iter()
+                        .flat_map(|g| g.semi_axes)
+                        .collect::<Vec<f64>>(),
+                ),
+                Attribute::tensors("shape_tensor")
+                    .with_data(grains.iter().flat_map(shape_tensor).collect::<Vec<f64>>()),
+                Attribute::generic("quadratic_form", 9)
+                    .with_data(grains.iter().flat_map(quadratic_form).collect::<Vec<f64>>()),
+            ],
+            cell: Vec::new(),
+        },
+        ..Default::default()
+    };
+    encode(out, DataSet::inline(piece))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Sums of three products of numbers of size ≤ 4: a few ulp of 16.
+    const TOL: f64 = 64.0 * f64::EPSILON;
+
+    #[test]
+    fn the_shape_tensor_maps_each_axis_to_its_semi_axis_and_squares_to_q() {
+        let q = [0.8f64, 0.1, 0.4, -0.3];
+        let norm = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let g = PackedGrain {
+            id: 3,
+            phase: 1,
+            centre: [1.0, 2.0, 3.0],
+            semi_axes: [4.0, 2.0, 0.5],
+            quaternion: q.map(|x| x / norm),
+        };
+        let s = shape_tensor(&g);
+        let q = quadratic_form(&g);
+        let r = rotation(g.quaternion);
+        for (axis, a) in r.iter().zip(g.semi_axes) {
+            // S r_k = a_k r_k: the semi-axes are the eigenvalues.
+            for i in 0..3 {
+                let sr: f64 = (0..3).map(|j| s[3 * i + j] * axis[j]).sum();
+                assert!((sr - a * axis[i]).abs() < TOL, "axis {axis:?}");
+            }
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                assert_eq!(s[3 * i + j], s[3 * j + i], "symmetric");
+                let ss: f64 = (0..3).map(|m| s[3 * i + m] * s[3 * m + j]).sum();
+                assert!((ss - q[3 * i + j]).abs() < TOL, "S² = Q at ({i}, {j})");
+            }
+        }
+    }
+}

@@ -1,0 +1,270 @@
+//! FIRE, the fast inertial relaxation engine (Bitzek et al., *Phys. Rev. Lett.* 97,
+//! 170201, 2006), with the corrections of FIRE 2.0 (Guénolé et al., *Comput. Mater.
+//! Sci.* 175, 109584, 2020): damped dynamics that accelerate while the power `F·v` is
+//! positive and stop dead when it turns negative. It minimises the overlap energy of
+//! [`Forces`] at a fixed scale until the grains are apart.
+
+use super::forces::Forces;
+use super::neighbours::Neighbours;
+use super::state::State;
+use super::{Counters, PackError, Progress, CONTACT_GAP};
+use crate::io::scene::Boundary;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// Time step at the start (grains have unit mass; a pair's stiffness is about 2).
+pub const DT_START: f64 = 0.05;
+/// Largest time step, below the stability limit `2/√k` of a grain with ten contacts.
+pub const DT_MAX: f64 = 0.4;
+/// Smallest time step.
+pub const DT_MIN: f64 = 0.002;
+/// Steps with positive power before the time step may grow (FIRE's `N_delay`).
+pub const N_DELAY: u32 = 5;
+/// Growth of the time step after [`N_DELAY`] steps of positive power.
+pub const DT_GROW: f64 = 1.1;
+/// Shrinking of the time step when the power turns negative.
+pub const DT_SHRINK: f64 = 0.5;
+/// Initial mixing of the velocity toward the force direction.
+pub const ALPHA_START: f64 = 0.1;
+/// Decay of the mixing after each step of positive power.
+pub const ALPHA_DECAY: f64 = 0.99;
+/// The most a grain moves in one step, as a share of `S ×` its smallest semi-axis:
+/// it keeps a grain from passing through a thin neighbour in one step.
+pub const MAX_MOVE: f64 = 0.1;
+/// Relaxation is judged every `WINDOW` steps: stuck when the least energy of the
+/// window is not below [`STUCK_RATIO`] times that of the window before.
+pub const WINDOW: u64 = 100;
+/// See [`WINDOW`].
+pub const STUCK_RATIO: f64 = 0.8;
+
+/// What a relaxation works with besides the grains: the broad and narrow phase's
+/// buffers, the counters, and the caller's stop flag and progress report.
+pub(crate) struct Run<'a> {
+    pub neighbours: Neighbours,
+    pub forces: Forces,
+    pub counters: Counters,
+    pub rotate: bool,
+    pub stop: &'a AtomicBool,
+    pub progress: &'a mut dyn FnMut(&Progress),
+}
+
+/// How a relaxation ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Outcome {
+    /// Every pair apart at the real scale (μ ≥ 1 + [`CONTACT_GAP`]), every grain inside.
+    Clean,
+    /// The energy stopped falling: the grains are jammed at this scale.
+    Stuck,
+    /// The step budget ran out.
+    Budget,
+    /// The caller asked to stop.
+    Interrupted,
+}
+
+/// The integrator's state: velocities (angular ones in length units, `ω × L`) and the
+/// adaptive step.
+#[derive(Default)]
+pub(crate) struct Fire {
+    velocity: Vec<[f64; 3]>,
+    spin: Vec<[f64; 3]>,
+    levers: Vec<f64>,
+    dt: f64,
+    alpha: f64,
+    positive: u32,
+}
+
+impl Fire {
+    /// Relaxes the state at scale `s`, with the energy taken at `big_s ≥ s` (the
+    /// margin makes the last overlaps vanish at `s` before the energy reaches zero).
+    pub fn relax(
+        &mut self,
+        state: &mut State,
+        run: &mut Run<'_>,
+        s: f64,
+        big_s: f64,
+        budget: u64,
+    ) -> Result<Outcome, PackError> {
+        let rotate = run.rotate;
+        let n = state.len();
+        self.velocity.clear();
+        self.velocity.resize(n, [0.0; 3]);
+        self.spin.clear();
+        self.spin.resize(n, [0.0; 3]);
+        self.dt = DT_START;
+        self.alpha = ALPHA_START;
+        self.positive = 0;
+        let (mut window_min, mut previous_min) = (f64::INFINITY, f64::INFINITY);
+        for step in 0..budget {
+            if run.stop.load(Ordering::Relaxed) {
+                return Ok(Outcome::Interrupted);
+            }
+            let Run {
+                neighbours,
+                forces,
+                counters,
+                ..
+            } = run;
+            let t0 = Instant::now();
+            if neighbours.update(state, big_s)? {
+                counters.list_builds += 1;
+            }
+            let t1 = Instant::now();
+            forces.evaluate(state, &neighbours.pairs, neighbours.builds, big_s, rotate);
+            let t2 = Instant::now();
+            counters.broad_phase += t1 - t0;
+            counters.narrow_phase += t2 - t1;
+            counters.pairs_tested += forces.tested;
+            counters.fire_steps += 1;
+            if forces.min_mu1 >= s * (1.0 + CONTACT_GAP) && self.inside(state, forces, s) {
+                counters.response += t2.elapsed();
+                return Ok(Outcome::Clean);
+            }
+            (run.progress)(&Progress {
+                step: counters.fire_steps,
+                scale: s,
+                fraction: state.fraction(s),
+                overlaps: forces.overlaps,
+            });
+            window_min = window_min.min(forces.energy);
+            if (step + 1) % WINDOW == 0 {
+                if window_min > STUCK_RATIO * previous_min {
+                    counters.response += t2.elapsed();
+                    return Ok(Outcome::Stuck);
+                }
+                (previous_min, window_min) = (window_min, f64::INFINITY);
+            }
+            self.step(state, forces, big_s, rotate)?;
+            counters.response += t2.elapsed();
+        }
+        Ok(Outcome::Budget)
+    }
+
+    fn inside(&self, state: &State, forces: &Forces, s: f64) -> bool {
+        state.domain.boundary == Boundary::Periodic
+            || forces.wall_hits == 0
+            || (0..state.len()).all(|i| state.inside_walls(i, s))
+    }
+
+    /// One FIRE 2.0 step: power check, semi-implicit Euler, velocity mixing.
+    fn step(
+        &mut self,
+        state: &mut State,
+        forces: &Forces,
+        big_s: f64,
+        rotate: bool,
+    ) -> Result<(), PackError> {
+        let n = state.len();
+        // Angular degrees of freedom in length units: ω × (S · largest semi-axis).
+        self.levers.clear();
+        self.levers
+            .extend(state.shapes.iter().map(|e| big_s * e.bounding_radius()));
+        let levers = std::mem::take(&mut self.levers);
+        let lever = |i: usize| levers[i];
+        let mut power = 0.0;
+        for i in 0..n {
+            power += dot(&forces.force[i], &self.velocity[i]);
+            if rotate {
+                power += dot(&forces.torque[i], &self.spin[i]) / lever(i);
+            }
+        }
+        if power > 0.0 {
+            self.positive += 1;
+            if self.positive > N_DELAY {
+                self.dt = (self.dt * DT_GROW).min(DT_MAX);
+                self.alpha *= ALPHA_DECAY;
+            }
+        } else {
+            self.positive = 0;
+            self.dt = (self.dt * DT_SHRINK).max(DT_MIN);
+            self.alpha = ALPHA_START;
+            // FIRE 2.0: step back half a step, and stop.
+            let back = 0.5 * self.dt;
+            for (c, v) in state.centres.iter_mut().zip(&self.velocity) {
+                for k in 0..3 {
+                    c[k] -= back * v[k];
+                }
+            }
+            self.velocity.iter_mut().for_each(|v| *v = [0.0; 3]);
+            self.spin.iter_mut().for_each(|v| *v = [0.0; 3]);
+        }
+        let dt = self.dt;
+        // v += dt F, then mix toward the force direction over all degrees of freedom.
+        let (mut vv, mut ff) = (0.0, 0.0);
+        for i in 0..n {
+            let f = forces.force[i];
+            axpy(&mut self.velocity[i], dt, &f);
+            vv += dot(&self.velocity[i], &self.velocity[i]);
+            ff += dot(&f, &f);
+            if rotate {
+                let t = forces.torque[i].map(|x| x / lever(i));
+                axpy(&mut self.spin[i], dt, &t);
+                vv += dot(&self.spin[i], &self.spin[i]);
+                ff += dot(&t, &t);
+            }
+        }
+        let mix = if ff > 0.0 {
+            self.alpha * (vv / ff).sqrt()
+        } else {
+            0.0
+        };
+        let keep = 1.0 - self.alpha;
+        for i in 0..n {
+            let limit = MAX_MOVE * big_s * state.shapes[i].inscribed_radius() / dt;
+            let f = forces.force[i];
+            let v = &mut self.velocity[i];
+            *v = v.map(|x| keep * x);
+            axpy(v, mix, &f);
+            clamp_norm(v, limit);
+            axpy(&mut state.centres[i], dt, v);
+            if rotate {
+                let l = lever(i);
+                let t = forces.torque[i].map(|x| x / l);
+                let w = &mut self.spin[i];
+                *w = w.map(|x| keep * x);
+                axpy(w, mix, &t);
+                clamp_norm(w, limit);
+                let angle = w.map(|x| dt * x / l);
+                if angle.iter().any(|&a| a != 0.0) {
+                    let q = rotate_by(state.quaternions[i], angle);
+                    state.set_orientation(i, q)?;
+                }
+            }
+        }
+        self.levers = levers;
+        Ok(())
+    }
+}
+
+/// `y += a x`.
+fn axpy(y: &mut [f64; 3], a: f64, x: &[f64; 3]) {
+    y.iter_mut().zip(x).for_each(|(y, x)| *y += a * x);
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn clamp_norm(v: &mut [f64; 3], limit: f64) {
+    let norm = dot(v, v).sqrt();
+    if norm > limit {
+        let f = limit / norm;
+        v.iter_mut().for_each(|x| *x *= f);
+    }
+}
+
+/// `exp(θ/2) ⊗ q`: `q` turned by the rotation vector `θ` (in the box frame), normalised.
+pub(crate) fn rotate_by(q: [f64; 4], theta: [f64; 3]) -> [f64; 4] {
+    let angle = dot(&theta, &theta).sqrt();
+    let (sin, cos) = (0.5 * angle).sin_cos();
+    // sin(θ/2)/θ, with its limit 1/2 at θ = 0.
+    let k = if angle > 0.0 { sin / angle } else { 0.5 };
+    let r = [cos, k * theta[0], k * theta[1], k * theta[2]];
+    let p = [
+        r[0] * q[0] - r[1] * q[1] - r[2] * q[2] - r[3] * q[3],
+        r[0] * q[1] + r[1] * q[0] + r[2] * q[3] - r[3] * q[2],
+        r[0] * q[2] - r[1] * q[3] + r[2] * q[0] + r[3] * q[1],
+        r[0] * q[3] + r[1] * q[2] - r[2] * q[1] + r[3] * q[0],
+    ];
+    let norm = p.iter().map(|x| x * x).sum::<f64>().sqrt();
+    p.map(|x| x / norm)
+}

@@ -1,0 +1,472 @@
+//! Narrow phase and response: the overlap energy of the grains at scale `S` and its
+//! gradient (forces, and torques when the grains may rotate).
+//!
+//! A pair with contact factor μ < 1 at scale `S` (μ = μ₁/S, μ₁ its contact factor at
+//! target size) has energy `w (1 − μ)²` with `w = (S (ρ_i + ρ_j))²`, ρ the smallest
+//! semi-axis: for two spheres that is `(σ − d)²`, the harmonic overlap energy of
+//! soft-sphere jamming (O'Hern et al., *Phys. Rev. E* 68, 011306, 2003), and μ is the
+//! Perram–Wertheim generalisation of `d/σ` (Donev et al., *J. Comput. Phys.* 202, 737,
+//! 2005, use the same μ). Its gradient needs no derivative of λ (λ maximises f):
+//! `∇_r μ² = 2 λ(1−λ) Q(λ)⁻¹ r = 2 μ² n / (r·n)` with `n` the contact normal, and a
+//! rotation ω of grain 2 changes μ² by `2 μ² (p₂ × n)·ω / (r·n)`, `p₂` the contact
+//! point from its centre: the torque of the contact force about the centre.
+//! A grain crossing a wall of a walled box has energy `δ²` per wall, δ its
+//! penetration.
+
+use super::neighbours::relative;
+use super::state::State;
+use crate::contact::{contact_geometry_fast, ContactGeometry, PreparedEllipsoid};
+use crate::io::scene::Boundary;
+use crate::octree::Pair;
+use rayon::prelude::*;
+
+/// The energy, forces and torques of a state, and what the narrow phase found.
+#[derive(Default)]
+pub(crate) struct Forces {
+    /// Force on each grain (minus the gradient of the energy by its centre).
+    pub force: Vec<[f64; 3]>,
+    /// Torque on each grain (minus the gradient by a rotation); zero unless asked for.
+    pub torque: Vec<[f64; 3]>,
+    /// Total energy.
+    pub energy: f64,
+    /// Pairs with μ < 1 at scale `S`.
+    pub overlaps: usize,
+    /// Smallest μ₁ (contact factor at target size) over the overlapping pairs; ∞ when
+    /// there are none.
+    pub min_mu1: f64,
+    /// Grains crossing a wall at scale `S`.
+    pub wall_hits: usize,
+    /// Pairs the narrow phase tested.
+    pub tested: u64,
+    hits: Vec<Option<PairForce>>,
+    /// Per candidate pair: a lower bound on μ₁ and the pair's travel when it was
+    /// taken; valid until the list is rebuilt.
+    bounds: Vec<(f64, f64)>,
+    /// Distance each grain has moved since the list was built, summed step by step,
+    /// and where it was at the last evaluation.
+    travel: Vec<f64>,
+    last: Vec<[f64; 3]>,
+    /// The list build the bounds refer to.
+    build: u64,
+    /// Pairs the Lipschitz bound let skip, over the run.
+    pub skipped: u64,
+}
+
+/// μ₁ is the gauge function of the Minkowski sum `E_i ⊕ (−E_j)`, which contains the
+/// ball of radius `ρ_i + ρ_j` (smallest semi-axes): it is Lipschitz in `r` with
+/// constant `1/(ρ_i + ρ_j)`. So a pair whose μ₁ was `m` when the two grains had
+/// travelled `t` in total is still at `μ₁ ≥ m − (t' − t)/(ρ_i + ρ_j)` after travelling
+/// `t'` — valid while orientations are fixed. A pair is skipped while that bound
+/// exceeds `S (1 + BOUND_SLACK)`; the slack covers the fast contact function's error
+/// (≤ 1e-8 relative even on the extreme reference set) with room to spare.
+pub const BOUND_SLACK: f64 = 1e-6;
+
+/// What one overlapping pair contributes.
+#[derive(Clone, Copy)]
+struct PairForce {
+    /// Force on the second grain (the first gets its opposite).
+    force: [f64; 3],
+    torque_i: [f64; 3],
+    torque_j: [f64; 3],
+    energy: f64,
+    mu1: f64,
+}
+
+impl Forces {
+    /// Evaluates the state at scale `big_s` over the candidate pairs of list build
+    /// `build`. With `torques` (rotating grains) every pair is evaluated; otherwise
+    /// pairs whose μ₁ is bounded above `big_s` since their last evaluation are skipped
+    /// (see [`BOUND_SLACK`]).
+    pub fn evaluate(
+        &mut self,
+        state: &State,
+        pairs: &[Pair],
+        build: u64,
+        big_s: f64,
+        torques: bool,
+    ) {
+        let n = state.len();
+        self.force.clear();
+        self.force.resize(n, [0.0; 3]);
+        self.torque.clear();
+        self.torque.resize(n, [0.0; 3]);
+        self.hits.clear();
+        self.hits.resize(pairs.len(), None);
+        if torques || build != self.build || self.bounds.len() != pairs.len() {
+            self.build = build;
+            self.bounds.clear();
+            self.bounds.resize(pairs.len(), (0.0, 0.0));
+            self.travel.clear();
+            self.travel.resize(n, 0.0);
+            self.last.clone_from(&state.centres);
+        } else {
+            for ((t, a), b) in self
+                .travel
+                .iter_mut()
+                .zip(&mut self.last)
+                .zip(&state.centres)
+            {
+                *t +=
+                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+                *a = *b;
+            }
+        }
+        let (centres, shapes, travel) = (&state.centres, &state.shapes, &self.travel);
+        let (round, axes) = (&state.round, &state.axes);
+        let skip_above = big_s * (1.0 + BOUND_SLACK);
+        let tested: u64 = pairs
+            .par_iter()
+            .zip(self.hits.par_iter_mut())
+            .zip(self.bounds.par_iter_mut())
+            .with_min_len(256)
+            .map(|((p, hit), bound)| {
+                let (i, j) = (p.i as usize, p.j as usize);
+                let (ei, ej) = (&shapes[i], &shapes[j]);
+                let moved = travel[i] + travel[j];
+                let inner = ei.inscribed_radius() + ej.inscribed_radius();
+                if bound.0 - (moved - bound.1) / inner >= skip_above {
+                    return 0;
+                }
+                let r = relative(centres, p);
+                // The gauge of a body inside the ball of radius b_i + b_j is at least
+                // |r| / (b_i + b_j).
+                let outer = ei.bounding_radius() + ej.bounding_radius();
+                let far = dot(&r, &r).sqrt() / outer;
+                if far >= skip_above {
+                    *bound = (far, moved);
+                    return 1;
+                }
+                let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
+                let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
+                *bound = (mu1, moved);
+                *hit = force;
+                1
+            })
+            .sum();
+        self.tested = tested;
+        self.skipped += pairs.len() as u64 - tested;
+        self.energy = 0.0;
+        self.overlaps = 0;
+        self.min_mu1 = f64::INFINITY;
+        for (p, hit) in pairs.iter().zip(&self.hits) {
+            let Some(h) = hit else { continue };
+            let (i, j) = (p.i as usize, p.j as usize);
+            self.overlaps += 1;
+            self.min_mu1 = self.min_mu1.min(h.mu1);
+            self.energy += h.energy;
+            for k in 0..3 {
+                self.force[i][k] -= h.force[k];
+                self.force[j][k] += h.force[k];
+            }
+            if torques {
+                for k in 0..3 {
+                    self.torque[i][k] += h.torque_i[k];
+                    self.torque[j][k] += h.torque_j[k];
+                }
+            }
+        }
+        self.wall_hits = 0;
+        if state.domain.boundary == Boundary::Reflecting {
+            self.walls(state, big_s, torques);
+        }
+    }
+
+    /// Each wall pushes back a grain crossing it with energy `δ²`.
+    fn walls(&mut self, state: &State, big_s: f64, torques: bool) {
+        let size = state.domain.size;
+        for i in 0..state.len() {
+            let (c, w) = (state.centres[i], state.half_widths[i]);
+            let mut hit = false;
+            for k in 0..3 {
+                let half = big_s * w[k];
+                // Penetration below the low wall (positive pushes up), above the high one.
+                let low = half - c[k];
+                let high = c[k] + half - size[k];
+                for (depth, sign) in [(low, 1.0), (high, -1.0)] {
+                    if depth <= 0.0 {
+                        continue;
+                    }
+                    hit = true;
+                    self.energy += depth * depth;
+                    self.force[i][k] += sign * 2.0 * depth;
+                    if torques {
+                        // d(half)/dω = S (Q e_k × e_k) / √Q_kk, Q at target size.
+                        let q = state.shapes[i].q();
+                        let col = match k {
+                            0 => [q[0], q[1], q[2]],
+                            1 => [q[1], q[3], q[4]],
+                            _ => [q[2], q[4], q[5]],
+                        };
+                        let mut e = [0.0; 3];
+                        e[k] = 1.0;
+                        let d = cross(&col, &e);
+                        let t = &mut self.torque[i];
+                        t.iter_mut()
+                            .zip(d)
+                            .for_each(|(t, d)| *t -= 2.0 * depth * big_s * d / w[k]);
+                    }
+                }
+            }
+            self.wall_hits += usize::from(hit);
+        }
+    }
+}
+
+/// μ₁ of one candidate pair, and its force and torques at scale `big_s` (`None` when
+/// it does not overlap there). `radii` are given when both grains are spheres.
+fn pair_force(
+    r: &[f64; 3],
+    (ei, ej): (&PreparedEllipsoid, &PreparedEllipsoid),
+    radii: Option<(f64, f64)>,
+    big_s: f64,
+    p: &Pair,
+) -> (f64, Option<PairForce>) {
+    let reach = big_s * (ei.inscribed_radius() + ej.inscribed_radius());
+    let w = reach * reach;
+    let g = if let Some((ri, rj)) = radii {
+        sphere_geometry(r, ri, rj)
+    } else {
+        contact_geometry_fast(r, ei.q(), ej.q()).ok()
+    };
+    let Some(g) = g.filter(|g| g.mu2.is_finite()) else {
+        // Coincident centres (or a pair the contact function cannot handle, which
+        // the scene's validated shapes do not produce): push apart along a fixed
+        // direction with the force of a full overlap.
+        let n = fallback_direction(p.i, p.j);
+        let force = PairForce {
+            force: n.map(|x| 2.0 * reach * x),
+            torque_i: [0.0; 3],
+            torque_j: [0.0; 3],
+            energy: w,
+            mu1: 0.0,
+        };
+        return (0.0, Some(force));
+    };
+    let mu1 = g.mu2.sqrt();
+    let mu = mu1 / big_s;
+    if mu >= 1.0 {
+        return (mu1, None);
+    }
+    let rn = dot(r, &g.normal);
+    // −∂U/∂r = 2 w (1 − μ) ∇μ, ∇μ = μ n / (r·n).
+    let scale = 2.0 * w * (1.0 - mu) * mu / rn;
+    let force = g.normal.map(|x| scale * x);
+    let pj = [0, 1, 2].map(|k| g.point[k] - r[k]);
+    let force = PairForce {
+        force,
+        torque_i: cross(&g.point, &force.map(|x| -x)),
+        torque_j: cross(&pj, &force),
+        energy: w * (1.0 - mu) * (1.0 - mu),
+        mu1,
+    };
+    (mu1, Some(force))
+}
+
+/// Two spheres need no contact function: `μ = d / (R_i + R_j)`, normal `r/d`, and
+/// they touch at `R_i r / (R_i + R_j)` from the first centre. `None` at `d = 0`.
+fn sphere_geometry(r: &[f64; 3], ri: f64, rj: f64) -> Option<ContactGeometry> {
+    let d = dot(r, r).sqrt();
+    if d == 0.0 {
+        return None;
+    }
+    let mu = d / (ri + rj);
+    Some(ContactGeometry {
+        mu2: mu * mu,
+        lambda: ri / (ri + rj),
+        point: r.map(|x| x * ri / (ri + rj)),
+        normal: r.map(|x| x / d),
+        gap: d - (ri + rj),
+    })
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+pub(crate) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// A unit vector that depends only on the pair's ids (a hash), for coincident centres.
+fn fallback_direction(i: u32, j: u32) -> [f64; 3] {
+    let mut h = (u64::from(i) << 32 | u64::from(j)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    let mut coord = || {
+        h ^= h >> 29;
+        h = h.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        (h >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let v = [coord(), coord(), coord()];
+    let n = dot(&v, &v).sqrt().max(f64::MIN_POSITIVE);
+    v.map(|x| x / n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::scene::{Domain, GrainSpec};
+    use crate::packing::fire::rotate_by;
+
+    /// Central differences of an energy that is smooth near the test point: step
+    /// 1e-6 of the lengths involved gives an error of about 1e-12 (truncation) +
+    /// 1e-10 (rounding of E ≈ 1 over 2e-6), so 1e-6 relative is a safe bound.
+    const FD_STEP: f64 = 1e-6;
+    const FD_TOL: f64 = 1e-6;
+
+    fn grain(axes: [f64; 3], q: [f64; 4]) -> GrainSpec {
+        let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+        GrainSpec {
+            phase: 0,
+            semi_axes: axes,
+            quaternion: q.map(|x| x / n),
+            diameter: 2.0 * axes.iter().product::<f64>().cbrt(),
+            aspect_ratio: axes[0] / axes[1],
+            tilt: None,
+        }
+    }
+
+    fn two_grains(domain: &Domain) -> State {
+        let specs = [
+            grain([3.0, 1.0, 0.7], [0.9, 0.2, -0.3, 0.1]),
+            grain([2.0, 1.5, 0.5], [0.4, -0.5, 0.6, 0.3]),
+        ];
+        let mut state = State::new(&specs, domain).unwrap();
+        state.centres = vec![[10.0, 10.0, 10.0], [11.2, 10.5, 9.8]];
+        state
+    }
+
+    const PAIR: [Pair; 1] = [Pair {
+        i: 0,
+        j: 1,
+        shift: [0.0; 3],
+    }];
+
+    fn energy(state: &State, big_s: f64) -> f64 {
+        let mut f = Forces::default();
+        f.evaluate(state, &PAIR, 1, big_s, true);
+        f.energy
+    }
+
+    #[test]
+    fn forces_and_torques_are_minus_the_gradient_of_the_energy() {
+        let domain = Domain {
+            size: [30.0; 3],
+            boundary: Boundary::Periodic,
+        };
+        let mut state = two_grains(&domain);
+        let big_s = 1.1;
+        let mut f = Forces::default();
+        f.evaluate(&state, &PAIR, 1, big_s, true);
+        assert_eq!(f.overlaps, 1, "the test pair must overlap");
+        assert!(f.energy > 0.0);
+        let scale = f.force[1].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for g in 0..2 {
+            for k in 0..3 {
+                let c = state.centres[g][k];
+                state.centres[g][k] = c + FD_STEP;
+                let up = energy(&state, big_s);
+                state.centres[g][k] = c - FD_STEP;
+                let down = energy(&state, big_s);
+                state.centres[g][k] = c;
+                let numeric = -(up - down) / (2.0 * FD_STEP);
+                assert!(
+                    (numeric - f.force[g][k]).abs() <= FD_TOL * scale,
+                    "force on {g} along {k}: {} vs {numeric}",
+                    f.force[g][k]
+                );
+
+                let q = state.quaternions[g];
+                let mut axis = [0.0; 3];
+                axis[k] = FD_STEP;
+                state.set_orientation(g, rotate_by(q, axis)).unwrap();
+                let up = energy(&state, big_s);
+                axis[k] = -FD_STEP;
+                state.set_orientation(g, rotate_by(q, axis)).unwrap();
+                let down = energy(&state, big_s);
+                state.set_orientation(g, q).unwrap();
+                let numeric = -(up - down) / (2.0 * FD_STEP);
+                assert!(
+                    (numeric - f.torque[g][k]).abs() <= FD_TOL * scale * 3.0,
+                    "torque on {g} about {k}: {} vs {numeric}",
+                    f.torque[g][k]
+                );
+            }
+        }
+        // Newton's third law: the forces cancel.
+        for k in 0..3 {
+            assert_eq!(f.force[0][k], -f.force[1][k]);
+        }
+    }
+
+    #[test]
+    fn wall_forces_and_torques_are_minus_the_gradient_of_the_energy() {
+        let domain = Domain {
+            size: [4.0, 30.0, 30.0],
+            boundary: Boundary::Reflecting,
+        };
+        let mut state = two_grains(&domain);
+        // Grain 0 pokes through the low x wall only.
+        state.centres = vec![[1.5, 10.0, 10.0], [2.0, 20.0, 20.0]];
+        let pairs: [Pair; 0] = [];
+        let big_s = 1.0;
+        let wall_energy = |state: &State| {
+            let mut f = Forces::default();
+            f.evaluate(state, &pairs, 1, big_s, true);
+            f.energy
+        };
+        let mut f = Forces::default();
+        f.evaluate(&state, &pairs, 1, big_s, true);
+        assert!(f.wall_hits >= 1 && f.energy > 0.0);
+        let scale = f.force[0][0].abs();
+        for k in 0..3 {
+            let c = state.centres[0][k];
+            state.centres[0][k] = c + FD_STEP;
+            let up = wall_energy(&state);
+            state.centres[0][k] = c - FD_STEP;
+            let down = wall_energy(&state);
+            state.centres[0][k] = c;
+            let numeric = -(up - down) / (2.0 * FD_STEP);
+            assert!((numeric - f.force[0][k]).abs() <= FD_TOL * scale);
+
+            let q = state.quaternions[0];
+            let mut axis = [0.0; 3];
+            axis[k] = FD_STEP;
+            state.set_orientation(0, rotate_by(q, axis)).unwrap();
+            let up = wall_energy(&state);
+            axis[k] = -FD_STEP;
+            state.set_orientation(0, rotate_by(q, axis)).unwrap();
+            let down = wall_energy(&state);
+            state.set_orientation(0, q).unwrap();
+            let numeric = -(up - down) / (2.0 * FD_STEP);
+            assert!(
+                (numeric - f.torque[0][k]).abs() <= FD_TOL * scale * 3.0,
+                "wall torque about {k}: {} vs {numeric}",
+                f.torque[0][k]
+            );
+        }
+    }
+
+    #[test]
+    fn two_spheres_feel_twice_their_overlap() {
+        let domain = Domain {
+            size: [30.0; 3],
+            boundary: Boundary::Periodic,
+        };
+        let specs = [
+            grain([1.0; 3], [1.0, 0.0, 0.0, 0.0]),
+            grain([2.0; 3], [1.0, 0.0, 0.0, 0.0]),
+        ];
+        let mut state = State::new(&specs, &domain).unwrap();
+        state.centres = vec![[5.0, 5.0, 5.0], [7.5, 5.0, 5.0]];
+        let mut f = Forces::default();
+        f.evaluate(&state, &PAIR, 1, 1.0, false);
+        // σ = 3, d = 2.5: force 2 (σ − d) = 1 along +x on the second sphere; the
+        // fast contact function is good to ~1e-15 on spheres.
+        assert!((f.force[1][0] - 1.0).abs() < 1e-12, "{:?}", f.force[1]);
+        assert!(f.force[1][1].abs() < 1e-12 && f.force[1][2].abs() < 1e-12);
+        assert!((f.energy - 0.25).abs() < 1e-12);
+    }
+}
