@@ -9,10 +9,7 @@
 mod common;
 
 use grainpack::io::scene::{GrainCount, Scene};
-use grainpack::packing::{pack, Packing};
 use std::fmt::Write as _;
-use std::sync::atomic::AtomicBool;
-use std::time::Instant;
 
 /// The scaling runs kanapy's grains at this packing fraction (the 10⁵ goal).
 const SCALING_FRACTION: f64 = 0.60;
@@ -42,7 +39,7 @@ fn main() {
         if let Some(r) = rotation {
             scene.packing.rotation = r;
         }
-        let (p, grains, secs) = run(&scene);
+        let (p, grains, secs) = common::pack_scene(&scene);
         writeln!(
             report,
             "| {path} | {} | {grains} | {secs:.2} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {:.6} | {:.2} / {:.2} / {:.2} |",
@@ -91,7 +88,7 @@ fn main() {
         let side = base_side * (n as f64 / base_grains * base_fraction / SCALING_FRACTION).cbrt();
         scene.domain.size = [side; 3];
         scene.count = GrainCount::Fraction(SCALING_FRACTION);
-        let (p, grains, secs) = run(&scene);
+        let (p, grains, secs) = common::pack_scene(&scene);
         let per_step = 1e3 * secs / p.counters.fire_steps.max(1) as f64 / (grains as f64 / 1000.0);
         writeln!(
             scaling,
@@ -117,23 +114,6 @@ fn main() {
             &scaling,
         );
     }
-}
-
-/// Draws and packs a scene: the packing, the number of grains and the seconds taken
-/// by `pack` (which includes its final exact check).
-fn run(scene: &Scene) -> (Packing, usize, f64) {
-    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-    let t = Instant::now();
-    let p = pack(
-        &specs,
-        &scene.domain,
-        &scene.packing,
-        scene.seed,
-        &AtomicBool::new(false),
-        &mut |_| {},
-    )
-    .unwrap();
-    (p, specs.len(), t.elapsed().as_secs_f64())
 }
 
 /// The process's peak resident memory (`VmHWM`), in MB; 0 where /proc is missing.

@@ -13,8 +13,7 @@ mod common;
 
 use grainpack::io::scene::Scene;
 use grainpack::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill};
-use grainpack::packing::{pack, PackedGrain};
-use std::sync::atomic::AtomicBool;
+use grainpack::packing::PackedGrain;
 use std::time::Instant;
 
 const SCENE: &str = "configs/kanapy_elongated.toml";
@@ -30,7 +29,10 @@ fn main() {
             read_grains(&path),
             "grains.csv of an earlier run".to_string(),
         ),
-        Err(_) => (pack_scene(&scene), "packed here".to_string()),
+        Err(_) => (
+            common::pack_scene(&scene).0.grains,
+            "packed here".to_string(),
+        ),
     };
     let phases = scene.phases.len();
     let threads = rayon::current_num_threads();
@@ -105,20 +107,6 @@ fn median(mut f: impl FnMut()) -> f64 {
         .collect();
     times.sort_by(f64::total_cmp);
     times[REPEATS / 2]
-}
-
-fn pack_scene(scene: &Scene) -> Vec<PackedGrain> {
-    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-    let p = pack(
-        &specs,
-        &scene.domain,
-        &scene.packing,
-        scene.seed,
-        &AtomicBool::new(false),
-        &mut |_| {},
-    )
-    .unwrap();
-    p.grains
 }
 
 /// `grains.csv` as `pack` writes it: id, phase, centre, semi-axes, quaternion.

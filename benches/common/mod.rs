@@ -40,3 +40,23 @@ pub fn update_section(path: &str, name: &str, text: &str) {
     std::fs::write(&tmp, new).unwrap();
     std::fs::rename(tmp, path).unwrap();
 }
+
+/// Draws a scene's grains with its seed and packs them: the packing, the number of
+/// grains and the seconds `pack` took (its final exact check included).
+#[allow(dead_code)] // not every bench packs
+pub fn pack_scene(
+    scene: &grainpack::io::scene::Scene,
+) -> (grainpack::packing::Packing, usize, f64) {
+    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+    let t = std::time::Instant::now();
+    let p = grainpack::packing::pack(
+        &specs,
+        &scene.domain,
+        &scene.packing,
+        scene.seed,
+        &std::sync::atomic::AtomicBool::new(false),
+        &mut |_| {},
+    )
+    .unwrap();
+    (p, specs.len(), t.elapsed().as_secs_f64())
+}
