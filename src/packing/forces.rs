@@ -19,6 +19,7 @@ use crate::contact::{contact_geometry_fast, ContactGeometry, PreparedEllipsoid};
 use crate::io::scene::Boundary;
 use crate::octree::Pair;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The energy, forces and torques of a state, and what the narrow phase found.
 #[derive(Default)]
@@ -38,7 +39,9 @@ pub(crate) struct Forces {
     pub wall_hits: usize,
     /// Pairs the narrow phase tested.
     pub tested: u64,
-    hits: Vec<Option<PairForce>>,
+    /// The overlapping pairs (index into the pair list) and what they contribute, in
+    /// pair order.
+    hits: Vec<(usize, PairForce)>,
     /// Per candidate pair: a lower bound on μ₁ and the pair's travel when it was
     /// taken; valid until the list is rebuilt.
     bounds: Vec<(f64, f64)>,
@@ -91,7 +94,6 @@ impl Forces {
         self.torque.clear();
         self.torque.resize(n, [0.0; 3]);
         self.hits.clear();
-        self.hits.resize(pairs.len(), None);
         if torques || build != self.build || self.bounds.len() != pairs.len() {
             self.build = build;
             self.bounds.clear();
@@ -114,19 +116,21 @@ impl Forces {
         let (centres, shapes, travel) = (&state.centres, &state.shapes, &self.travel);
         let (round, axes) = (&state.round, &state.axes);
         let skip_above = big_s * (1.0 + BOUND_SLACK);
-        let tested: u64 = pairs
+        let tested = AtomicU64::new(0);
+        let found = pairs
             .par_iter()
-            .zip(self.hits.par_iter_mut())
             .zip(self.bounds.par_iter_mut())
+            .enumerate()
             .with_min_len(256)
-            .map(|((p, hit), bound)| {
+            .filter_map(|(index, (p, bound))| {
                 let (i, j) = (p.i as usize, p.j as usize);
                 let (ei, ej) = (&shapes[i], &shapes[j]);
                 let moved = travel[i] + travel[j];
                 let inner = ei.inscribed_radius() + ej.inscribed_radius();
                 if bound.0 - (moved - bound.1) / inner >= skip_above {
-                    return 0;
+                    return None;
                 }
+                tested.fetch_add(1, Ordering::Relaxed);
                 let r = relative(centres, p);
                 // The gauge of a body inside the ball of radius b_i + b_j is at least
                 // |r| / (b_i + b_j).
@@ -134,22 +138,22 @@ impl Forces {
                 let far = dot(&r, &r).sqrt() / outer;
                 if far >= skip_above {
                     *bound = (far, moved);
-                    return 1;
+                    return None;
                 }
                 let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
                 let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
                 *bound = (mu1, moved);
-                *hit = force;
-                1
-            })
-            .sum();
-        self.tested = tested;
-        self.skipped += pairs.len() as u64 - tested;
+                force.map(|f| (index, f))
+            });
+        // Collected in pair order whatever the threads (rayon keeps the order).
+        self.hits.par_extend(found);
+        self.tested = tested.into_inner();
+        self.skipped += pairs.len() as u64 - self.tested;
         self.energy = 0.0;
         self.overlaps = 0;
         self.min_mu1 = f64::INFINITY;
-        for (p, hit) in pairs.iter().zip(&self.hits) {
-            let Some(h) = hit else { continue };
+        for (index, h) in &self.hits {
+            let p = &pairs[*index];
             let (i, j) = (p.i as usize, p.j as usize);
             self.overlaps += 1;
             self.min_mu1 = self.min_mu1.min(h.mu1);
