@@ -1,0 +1,165 @@
+//! Forces and torques against finite differences of the energy.
+
+use super::*;
+use crate::io::scene::{Domain, GrainSpec};
+use crate::packing::fire::rotate_by;
+
+/// Central differences of an energy that is smooth near the test point: step
+/// 1e-6 of the lengths involved gives an error of about 1e-12 (truncation) +
+/// 1e-10 (rounding of E ≈ 1 over 2e-6), so 1e-6 relative is a safe bound.
+const FD_STEP: f64 = 1e-6;
+const FD_TOL: f64 = 1e-6;
+
+fn grain(axes: [f64; 3], q: [f64; 4]) -> GrainSpec {
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    GrainSpec {
+        phase: 0,
+        semi_axes: axes,
+        quaternion: q.map(|x| x / n),
+        diameter: 2.0 * axes.iter().product::<f64>().cbrt(),
+        aspect_ratio: axes[0] / axes[1],
+        tilt: None,
+    }
+}
+
+fn two_grains(domain: &Domain) -> State {
+    let specs = [
+        grain([3.0, 1.0, 0.7], [0.9, 0.2, -0.3, 0.1]),
+        grain([2.0, 1.5, 0.5], [0.4, -0.5, 0.6, 0.3]),
+    ];
+    let mut state = State::new(&specs, domain).unwrap();
+    state.centres = vec![[10.0, 10.0, 10.0], [11.2, 10.5, 9.8]];
+    state
+}
+
+const PAIR: [Pair; 1] = [Pair {
+    i: 0,
+    j: 1,
+    shift: [0.0; 3],
+}];
+
+fn energy(state: &State, big_s: f64) -> f64 {
+    let mut f = Forces::default();
+    f.evaluate(state, &PAIR, 1, big_s, true);
+    f.energy
+}
+
+#[test]
+fn forces_and_torques_are_minus_the_gradient_of_the_energy() {
+    let domain = Domain {
+        size: [30.0; 3],
+        boundary: Boundary::Periodic,
+    };
+    let mut state = two_grains(&domain);
+    let big_s = 1.1;
+    let mut f = Forces::default();
+    f.evaluate(&state, &PAIR, 1, big_s, true);
+    assert_eq!(f.overlaps, 1, "the test pair must overlap");
+    assert!(f.energy > 0.0);
+    let scale = f.force[1].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for g in 0..2 {
+        for k in 0..3 {
+            let c = state.centres[g][k];
+            state.centres[g][k] = c + FD_STEP;
+            let up = energy(&state, big_s);
+            state.centres[g][k] = c - FD_STEP;
+            let down = energy(&state, big_s);
+            state.centres[g][k] = c;
+            let numeric = -(up - down) / (2.0 * FD_STEP);
+            assert!(
+                (numeric - f.force[g][k]).abs() <= FD_TOL * scale,
+                "force on {g} along {k}: {} vs {numeric}",
+                f.force[g][k]
+            );
+
+            let q = state.quaternions[g];
+            let mut axis = [0.0; 3];
+            axis[k] = FD_STEP;
+            state.set_orientation(g, rotate_by(q, axis)).unwrap();
+            let up = energy(&state, big_s);
+            axis[k] = -FD_STEP;
+            state.set_orientation(g, rotate_by(q, axis)).unwrap();
+            let down = energy(&state, big_s);
+            state.set_orientation(g, q).unwrap();
+            let numeric = -(up - down) / (2.0 * FD_STEP);
+            assert!(
+                (numeric - f.torque[g][k]).abs() <= FD_TOL * scale * 3.0,
+                "torque on {g} about {k}: {} vs {numeric}",
+                f.torque[g][k]
+            );
+        }
+    }
+    // Newton's third law: the forces cancel.
+    for k in 0..3 {
+        assert_eq!(f.force[0][k], -f.force[1][k]);
+    }
+}
+
+#[test]
+fn wall_forces_and_torques_are_minus_the_gradient_of_the_energy() {
+    let domain = Domain {
+        size: [4.0, 30.0, 30.0],
+        boundary: Boundary::Reflecting,
+    };
+    let mut state = two_grains(&domain);
+    // Grain 0 pokes through the low x wall only.
+    state.centres = vec![[1.5, 10.0, 10.0], [2.0, 20.0, 20.0]];
+    let pairs: [Pair; 0] = [];
+    let big_s = 1.0;
+    let wall_energy = |state: &State| {
+        let mut f = Forces::default();
+        f.evaluate(state, &pairs, 1, big_s, true);
+        f.energy
+    };
+    let mut f = Forces::default();
+    f.evaluate(&state, &pairs, 1, big_s, true);
+    assert!(f.wall_hits >= 1 && f.energy > 0.0);
+    let scale = f.force[0][0].abs();
+    for k in 0..3 {
+        let c = state.centres[0][k];
+        state.centres[0][k] = c + FD_STEP;
+        let up = wall_energy(&state);
+        state.centres[0][k] = c - FD_STEP;
+        let down = wall_energy(&state);
+        state.centres[0][k] = c;
+        let numeric = -(up - down) / (2.0 * FD_STEP);
+        assert!((numeric - f.force[0][k]).abs() <= FD_TOL * scale);
+
+        let q = state.quaternions[0];
+        let mut axis = [0.0; 3];
+        axis[k] = FD_STEP;
+        state.set_orientation(0, rotate_by(q, axis)).unwrap();
+        let up = wall_energy(&state);
+        axis[k] = -FD_STEP;
+        state.set_orientation(0, rotate_by(q, axis)).unwrap();
+        let down = wall_energy(&state);
+        state.set_orientation(0, q).unwrap();
+        let numeric = -(up - down) / (2.0 * FD_STEP);
+        assert!(
+            (numeric - f.torque[0][k]).abs() <= FD_TOL * scale * 3.0,
+            "wall torque about {k}: {} vs {numeric}",
+            f.torque[0][k]
+        );
+    }
+}
+
+#[test]
+fn two_spheres_feel_twice_their_overlap() {
+    let domain = Domain {
+        size: [30.0; 3],
+        boundary: Boundary::Periodic,
+    };
+    let specs = [
+        grain([1.0; 3], [1.0, 0.0, 0.0, 0.0]),
+        grain([2.0; 3], [1.0, 0.0, 0.0, 0.0]),
+    ];
+    let mut state = State::new(&specs, &domain).unwrap();
+    state.centres = vec![[5.0, 5.0, 5.0], [7.5, 5.0, 5.0]];
+    let mut f = Forces::default();
+    f.evaluate(&state, &PAIR, 1, 1.0, false);
+    // σ = 3, d = 2.5: force 2 (σ − d) = 1 along +x on the second sphere; the
+    // fast contact function is good to ~1e-15 on spheres.
+    assert!((f.force[1][0] - 1.0).abs() < 1e-12, "{:?}", f.force[1]);
+    assert!(f.force[1][1].abs() < 1e-12 && f.force[1][2].abs() < 1e-12);
+    assert!((f.energy - 0.25).abs() < 1e-12);
+}
