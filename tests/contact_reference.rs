@@ -67,6 +67,21 @@ fn contact_function_is_within_1e_12_on_every_extreme_category() {
     }
 }
 
+/// The accurate method's error is a few ulps on every row of both sets (measured at
+/// most 3.6e-16, 1.6 ε): 1e-15 (4.5 ε) catches a corrector that stops a step early,
+/// as it would near λ = 0 or 1 with the quadratic gain test alone (7.8e-15 there).
+#[test]
+fn contact_function_is_within_a_few_ulps_on_both_sets() {
+    for name in ["contact_typical.csv", "contact_extreme.csv"] {
+        for (category, err) in max_errors(&load(name), accurate) {
+            assert!(
+                err <= 1e-15,
+                "{name}, {category}: max relative error {err:e}"
+            );
+        }
+    }
+}
+
 /// The double-precision method errs by about ε·cond(Q(λ*)): cond stays below 1e4
 /// on the typical set (semi-axes 0.1–10), so 1e-11 bounds it with room for the
 /// constant, and a regression to a sloppier stopping rule would show.

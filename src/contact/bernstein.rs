@@ -1,4 +1,4 @@
-//! `f(λ) = λ(1−λ) a(λ) / b(λ)` in Bernstein form, for a cheap scalar Newton iteration.
+//! `f(λ) = λ(1−λ) a(λ) / b(λ)` in Bernstein form, for a cheap scalar Halley iteration.
 //!
 //! With `s = 1−λ`, `t = λ` and `Q(λ) = s Q1 + t Q2`:
 //! - `b(λ) = det Q(λ) = B0 s³ + B1 s²t + B2 st² + B3 t³`, with `B0 = det Q1`,
@@ -11,15 +11,51 @@
 //! is, and `a`, `b` evaluate without cancellation on `[0, 1]`. The iteration works on
 //! `φ = ln f`, concave like `f`, whose derivative
 //! `φ′ = 1/t − 1/s + a′/a − b′/b` carries the poles at both ends exactly.
+//!
+//! The coefficients of `a` and of `b` are each scaled by a power of two to a largest
+//! coefficient in `[1, 2)`, which leaves `φ′, φ″, φ‴` unchanged and keeps the products
+//! of [`Rational::halley`] in range.
 
-use super::sym::pencil_coefficients;
+use super::scale::ldexp;
+use super::sym::{frobenius, quadratic_form, PencilParts};
 use super::{Sym3, Vec3};
 
-/// The seven Bernstein coefficients of `a` and `b`.
+/// Smallest `P = t s a b` (scaled coefficients) at which [`Rational::halley`] multiplies
+/// through by `P`: its terms are of order `P⁴`, and `2^-200` keeps them above
+/// `2^-800`, far from underflow. Below it (sizes or λ at the edge of double range),
+/// [`Rational::log_derivatives`] divides term by term instead.
+pub(crate) const MIN_SCALED_PRODUCT: f64 = f64::from_bits((1023 - 200) << 52);
+
+/// The seven Bernstein coefficients of `a` and `b`, each set scaled by a power of two,
+/// with the coefficients of their derivatives (differences of neighbours, formed once).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Rational {
+    /// `a = A0 s² + A1 st + A2 t²`.
     a: [f64; 3],
+    /// `b = B0 s³ + B1 s²t + B2 st² + B3 t³`.
     b: [f64; 4],
+    /// `a′ = α0 s + α1 t` and the constant `a″`.
+    da: [f64; 2],
+    dda: f64,
+    /// `b′ = β0 s² + β1 st + β2 t²`, `b″ = γ0 s + γ1 t` and the constant `b‴`.
+    db: [f64; 3],
+    ddb: [f64; 2],
+    dddb: f64,
+    /// `log2` of the scale taken out of the coefficients of `a`.
+    a_exp: i32,
+    /// `log2` of the scale taken out of the coefficients of `b`.
+    b_exp: i32,
+}
+
+/// What a Halley step on `φ′` needs at one λ: `Dk = P^k φ^(k)` with `P = t s a b > 0`,
+/// so that the step `−2φ′φ″ / (2φ″² − φ′φ‴) = −2 D1 D2 P / (2 D2² − D1 D3)` costs one
+/// division, and the Newton gain `φ′² / (2|φ″|) = D1² / (2|D2|)`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Halley {
+    pub d1: f64,
+    pub d2: f64,
+    pub d3: f64,
+    pub p: f64,
 }
 
 impl Rational {
@@ -29,39 +65,130 @@ impl Rational {
     /// err by `ε cond²`. The mixed ones are sums of positive terms and err by
     /// `ε cond` at worst.
     #[inline(always)]
-    pub fn new(r: &Vec3, q1: &Sym3, q2: &Sym3, ends: [f64; 4]) -> Self {
+    pub fn new(r: &Vec3, q1: &Sym3, q2: &Sym3, parts: &PencilParts, ends: [f64; 4]) -> Self {
         let [det1, det2, a_end, b_end] = ends;
-        let (mut a, mut b) = pencil_coefficients(q1, q2, r);
-        (a[0], a[2], b[0], b[3]) = (det1 * a_end, det2 * b_end, det1, det2);
-        Self { a, b }
+        let a = [det1 * a_end, quadratic_form(&parts.mixed, r), det2 * b_end];
+        let b = [
+            det1,
+            frobenius(&parts.adj1, q2),
+            frobenius(q1, &parts.adj2),
+            det2,
+        ];
+        let a_exp = exponent(a[0].max(a[1]).max(a[2]));
+        let b_exp = exponent(b[0].max(b[1]).max(b[2]).max(b[3]));
+        let (sa, sb) = (pow2(-a_exp), pow2(-b_exp));
+        let [a0, a1, a2] = a.map(|x| x * sa);
+        let [b0, b1, b2, b3] = b.map(|x| x * sb);
+        // d/dt of c0 s² + c1 st + c2 t² is (c1 − 2c0) s + (2c2 − c1) t, and of c0 s + c1 t
+        // is c1 − c0 (s = 1 − t).
+        let db = [b1 - 3.0 * b0, 2.0 * (b2 - b1), 3.0 * b3 - b2];
+        let ddb = [db[1] - 2.0 * db[0], 2.0 * db[2] - db[1]];
+        let da = [a1 - 2.0 * a0, 2.0 * a2 - a1];
+        Self {
+            a: [a0, a1, a2],
+            b: [b0, b1, b2, b3],
+            da,
+            dda: da[1] - da[0],
+            db,
+            ddb,
+            dddb: ddb[1] - ddb[0],
+            a_exp,
+            b_exp,
+        }
     }
 
     /// `f(λ)`.
     #[inline(always)]
     pub fn f(&self, t: f64) -> f64 {
         let s = 1.0 - t;
-        let [a0, a1, a2] = self.a;
-        let [b0, b1, b2, b3] = self.b;
-        let a = (a0 * s + a1 * t) * s + a2 * t * t;
-        let b = ((b0 * s + b1 * t) * s + b2 * t * t) * s + b3 * t * t * t;
-        s * t * a / b
+        let (a, b) = (self.a_at(t, s), self.b_at(t, s));
+        ldexp(s * t * a / b, self.a_exp - self.b_exp)
     }
 
-    /// `φ′`, `φ″` and `φ‴` of `φ = ln f` at λ.
+    /// `det Q(λ) = b(λ)`, unscaled.
+    #[cfg(test)]
+    pub fn det_at(&self, t: f64) -> f64 {
+        self.det_scaled_at(t) * self.det_unit()
+    }
+
+    /// `det Q(λ)` in units of [`Rational::det_unit`]: of order 1 on most of `[0, 1]`.
+    #[inline(always)]
+    pub fn det_scaled_at(&self, t: f64) -> f64 {
+        self.b_at(t, 1.0 - t)
+    }
+
+    /// The power of two taken out of the coefficients of `b`.
+    #[inline(always)]
+    pub fn det_unit(&self) -> f64 {
+        pow2(self.b_exp)
+    }
+
+    #[inline(always)]
+    fn a_at(&self, t: f64, s: f64) -> f64 {
+        let [a0, a1, a2] = self.a;
+        (a0 * s + a1 * t) * s + a2 * t * t
+    }
+
+    #[inline(always)]
+    fn b_at(&self, t: f64, s: f64) -> f64 {
+        let [b0, b1, b2, b3] = self.b;
+        ((b0 * s + b1 * t) * s + b2 * t * t) * s + b3 * t * t * t
+    }
+
+    /// `a, a′, a″, b, b′, b″, b‴` at λ (scaled coefficients).
+    #[inline(always)]
+    fn polynomials(&self, t: f64, s: f64) -> [f64; 7] {
+        let (ss, st, tt) = (s * s, s * t, t * t);
+        let [a0, a1, a2] = self.a;
+        let [b0, b1, b2, b3] = self.b;
+        let [da0, da1] = self.da;
+        let [db0, db1, db2] = self.db;
+        let [ddb0, ddb1] = self.ddb;
+        let a = a0 * ss + a1 * st + a2 * tt;
+        let b = s * (b0 * ss + b1 * st + b2 * tt) + b3 * tt * t;
+        let da = da0 * s + da1 * t;
+        let db = db0 * ss + db1 * st + db2 * tt;
+        let ddb = ddb0 * s + ddb1 * t;
+        [a, da, self.dda, b, db, ddb, self.dddb]
+    }
+
+    /// `φ′`, `φ″` and `φ‴` multiplied by `P`, `P²`, `P³` (see [`Halley`]), or `None`
+    /// when `P` is below [`MIN_SCALED_PRODUCT`].
+    ///
+    /// With `X1 = P/t`, `X2 = P/s`, `Ya = P a′/a`, `Yb = P b′/b`, `Za = P a″/a`,
+    /// `Zb = P b″/b`, `W = P b‴/b` (each a product of polynomials, no division):
+    /// `D1 = X1 − X2 + Ya − Yb`,
+    /// `D2 = −X1² − X2² + P(Za − Zb) − Ya² + Yb²`,
+    /// `D3 = 2(X1³ − X2³) + Ya(2Ya² − 3P Za) − P² W − Yb(2Yb² − 3P Zb)`.
+    #[inline(always)]
+    pub fn halley(&self, t: f64) -> Option<Halley> {
+        let s = 1.0 - t;
+        let [a, da, dda, b, db, ddb, dddb] = self.polynomials(t, s);
+        let ts = t * s;
+        let ab = a * b;
+        let p = ts * ab;
+        if !(p >= MIN_SCALED_PRODUCT) {
+            return None;
+        }
+        let (x1, x2) = (s * ab, t * ab);
+        let (tsa, tsb) = (ts * a, ts * b);
+        let (ya, yb) = (tsb * da, tsa * db);
+        let (za, zb, w) = (tsb * dda, tsa * ddb, tsa * dddb);
+        let d1 = x1 - x2 + ya - yb;
+        let d2 = -x1 * x1 - x2 * x2 + p * (za - zb) - ya * ya + yb * yb;
+        let d3 = 2.0 * (x1 * x1 * x1 - x2 * x2 * x2) + ya * (2.0 * ya * ya - 3.0 * p * za)
+            - p * p * w
+            - yb * (2.0 * yb * yb - 3.0 * p * zb);
+        Some(Halley { d1, d2, d3, p })
+    }
+
+    /// `φ′`, `φ″` and `φ‴` of `φ = ln f` at λ, term by term (no range limit).
     #[inline(always)]
     pub fn log_derivatives(&self, t: f64) -> [f64; 3] {
         let s = 1.0 - t;
-        let [a0, a1, a2] = self.a;
-        let [b0, b1, b2, b3] = self.b;
-        let a = (a0 * s + a1 * t) * s + a2 * t * t;
-        let da = 2.0 * (a2 * t - a0 * s) + a1 * (s - t);
-        let dda = 2.0 * (a0 - a1 + a2);
-        let b = ((b0 * s + b1 * t) * s + b2 * t * t) * s + b3 * t * t * t;
-        let db = 3.0 * (b3 * t * t - b0 * s * s) + b1 * s * (s - 2.0 * t) + b2 * t * (2.0 * s - t);
-        let ddb = 6.0 * (b0 * s + b3 * t) + b1 * (2.0 * t - 4.0 * s) + b2 * (2.0 * s - 4.0 * t);
-        let dddb = 6.0 * (b1 - b0 - b2 + b3);
+        let [a, da, dda, b, db, ddb, dddb] = self.polynomials(t, s);
         // 1/t = s/(ts) and 1/s = t/(ts): one division for both. (Not so for a and b,
-        // whose product may overflow.)
+        // whose product may underflow.)
         let its = 1.0 / (t * s);
         let (it, is, ia, ib) = (s * its, t * its, 1.0 / a, 1.0 / b);
         let (ra, raa) = (da * ia, dda * ia);
@@ -75,25 +202,48 @@ impl Rational {
     }
 }
 
+/// `floor(log2 x)` of a positive normal `x`, clamped to `[-1022, 1022]` so that
+/// `2^-e` is normal; 0 for anything else (zero, subnormal, NaN, infinity), which then
+/// goes through unscaled and is caught downstream.
+#[inline(always)]
+fn exponent(x: f64) -> i32 {
+    if x.is_normal() {
+        (((x.to_bits() >> 52) & 0x7ff) as i32 - 1023).clamp(-1022, 1022)
+    } else {
+        0
+    }
+}
+
+/// `2^k` for `k` in `[-1022, 1023]`.
+#[inline(always)]
+fn pow2(k: i32) -> f64 {
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::ldl::Ldl;
 
-    /// φ′, φ″ and φ‴ against central differences of φ = ln f.
-    #[test]
-    fn log_derivatives_match_finite_differences() {
+    fn example() -> Rational {
         let r = [0.7, -0.7, 1.1];
         let q1 = [4.0, 1.0, 0.5, 3.0, -0.2, 2.0];
         let q2 = [1.0, -0.3, 0.1, 2.0, 0.4, 0.5];
-        let l1 = crate::contact::ldl::Ldl::factor(&q1).unwrap();
-        let l2 = crate::contact::ldl::Ldl::factor(&q2).unwrap();
+        let l1 = Ldl::factor(&q1).unwrap();
+        let l2 = Ldl::factor(&q2).unwrap();
         let ends = [
             l1.det(),
             l2.det(),
             l1.quadratic_form(&r),
             l2.quadratic_form(&r),
         ];
-        let rat = Rational::new(&r, &q1, &q2, ends);
+        Rational::new(&r, &q1, &q2, &PencilParts::new(&q1, &q2), ends)
+    }
+
+    /// φ′, φ″ and φ‴ against central differences of φ = ln f.
+    #[test]
+    fn log_derivatives_match_finite_differences() {
+        let rat = example();
         let phi = |t: f64| rat.f(t).ln();
         let h = 1e-4;
         for t in [0.2, 0.5, 0.8] {
@@ -117,5 +267,64 @@ mod tests {
                 "{t}: {d3} {fd3}"
             );
         }
+    }
+
+    /// The scaled derivatives divided by `P^k` are the log-derivatives.
+    #[test]
+    fn halley_terms_are_scaled_log_derivatives() {
+        let rat = example();
+        for t in [1e-9, 0.2, 0.5, 0.8, 1.0 - 1e-9] {
+            let d = rat.log_derivatives(t);
+            let h = rat.halley(t).unwrap();
+            let e = [h.d1 / h.p, h.d2 / (h.p * h.p), h.d3 / (h.p * h.p * h.p)];
+            // Both sides are sums of the same terms with a few roundings each; the terms
+            // cancel in φ′ near its root only (not at these λ), so 1e-12 is generous.
+            for k in 0..3 {
+                assert!(
+                    (d[k] - e[k]).abs() <= 1e-12 * d[k].abs(),
+                    "{t}: {d:?} {e:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn det_at_is_the_determinant_of_the_pencil() {
+        let rat = example();
+        let (q1, q2) = (
+            [4.0, 1.0, 0.5, 3.0, -0.2, 2.0],
+            [1.0, -0.3, 0.1, 2.0, 0.4, 0.5],
+        );
+        for t in [0.0, 0.3, 1.0] {
+            let q: Sym3 = std::array::from_fn(|k| (1.0 - t) * q1[k] + t * q2[k]);
+            let d = Ldl::factor(&q).unwrap().det();
+            // Well-conditioned matrices (cond < 10): a few ulps.
+            assert!((rat.det_at(t) - d).abs() <= 1e-14 * d, "{t}");
+        }
+    }
+
+    /// Two spheres of radii 1 and 2^-40: at their maximiser λ = 1 − 2^-40 the scaled
+    /// product `P = t s a b ≈ 2^-240` is below [`MIN_SCALED_PRODUCT`], so
+    /// [`Rational::halley`] declines and the term-by-term derivatives, still finite,
+    /// take over; at λ = ½ both agree.
+    #[test]
+    fn halley_terms_decline_out_of_range_products() {
+        let r = [1.0, 0.0, 0.0];
+        let tiny = 2f64.powi(-80);
+        let (q1, q2) = (
+            [1.0, 0.0, 0.0, 1.0, 0.0, 1.0],
+            [tiny, 0.0, 0.0, tiny, 0.0, tiny],
+        );
+        let ends = [1.0, tiny * tiny * tiny, 1.0, 1.0 / tiny];
+        let rat = Rational::new(&r, &q1, &q2, &PencilParts::new(&q1, &q2), ends);
+        let t = 1.0 - 2f64.powi(-40);
+        assert!(rat.halley(t).is_none());
+        assert!(rat.log_derivatives(t).iter().all(|d| d.is_finite()));
+        let (h, d) = (rat.halley(0.5).unwrap(), rat.log_derivatives(0.5));
+        // Same terms, a few roundings apart.
+        assert!(
+            (h.d1 / h.p - d[0]).abs() <= 1e-12 * d[0].abs().max(1.0),
+            "{h:?} {d:?}"
+        );
     }
 }

@@ -53,6 +53,13 @@ impl Acc {
         Self { hi: x, lo: 0.0 }
     }
 
+    /// The exact product `a · b`.
+    #[inline(always)]
+    pub fn from_prod(a: f64, b: f64) -> Self {
+        let (hi, lo) = two_prod(a, b);
+        Self { hi, lo }
+    }
+
     /// Adds `x`.
     #[inline(always)]
     pub fn add(&mut self, x: f64) {

@@ -1,7 +1,7 @@
 //! Where and along which normal two ellipsoids touch once scaled by μ, and how far apart
 //! they are.
 
-use super::perram_wertheim::factor_at;
+use super::direct::factor_at;
 use super::sym::{dot, sym_mul};
 use super::{contact_function, contact_function_fast, Contact, ContactError, Sym3, Vec3};
 

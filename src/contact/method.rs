@@ -10,9 +10,10 @@ use std::str::FromStr;
 /// A way of answering the contact question for a pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
-    /// [`contact_function`]: Newton in double, then a refined evaluation of μ².
+    /// [`contact_function`]: Halley on the rational form in double, then Newton on a
+    /// residual refined in double-double.
     Accurate,
-    /// [`contact_function_fast`]: Newton in double only.
+    /// [`contact_function_fast`]: the Halley predictor only.
     Fast,
     /// [`contact_function_rational`]: root of the degree-6 numerator of f′.
     Rational,

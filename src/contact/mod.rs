@@ -7,6 +7,7 @@
 
 mod bernstein;
 mod dd;
+mod direct;
 mod ellipsoid;
 mod error;
 mod geometry;
@@ -16,8 +17,11 @@ mod overlap;
 mod perram_wertheim;
 mod prepared;
 pub mod rational;
+mod refine;
 mod scale;
 mod sym;
+#[cfg(test)]
+mod test_pairs;
 pub mod wang;
 
 pub use ellipsoid::{Ellipsoid, ShapeError, QUATERNION_NORM_TOL};
@@ -27,10 +31,11 @@ pub use ldl::MIN_RELATIVE_PIVOT;
 pub use method::{Answer, Method, Timing, UnknownMethod};
 pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};
 pub use perram_wertheim::{
-    contact_function, contact_function_fast, CORRECTOR_GAIN_TOL, GAIN_TOL, HALLEY_FINAL_GAIN,
-    MAX_ITERATIONS,
+    contact_function, contact_function_fast, CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL, GAIN_TOL,
+    HALLEY_FINAL_GAIN, MAX_ITERATIONS,
 };
 pub use prepared::PreparedEllipsoid;
+pub use refine::REFINEMENT_TOL;
 
 /// A vector in 3D: `[x, y, z]`.
 pub type Vec3 = [f64; 3];

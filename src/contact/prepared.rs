@@ -1,8 +1,9 @@
 //! An ellipsoid validated and factored once, for repeated overlap tests.
 
+use super::direct::condition_bound;
 use super::ellipsoid::{Ellipsoid, ShapeError};
 use super::ldl::Ldl;
-use super::perram_wertheim::condition_bound;
+use super::scale::diagonal_in_safe_range;
 use super::Sym3;
 
 /// An ellipsoid with what repeated contact queries need: its LDLᵀ factors, exact
@@ -19,6 +20,9 @@ pub struct PreparedEllipsoid {
     bounding_radius: f64,
     inscribed_radius: f64,
     pub(crate) condition: f64,
+    /// Whether the diagonal of `q` needs no rescaling (see
+    /// [`diagonal_in_safe_range`](super::scale::diagonal_in_safe_range)).
+    pub(crate) unscaled: bool,
 }
 
 impl PreparedEllipsoid {
@@ -33,6 +37,7 @@ impl PreparedEllipsoid {
             bounding_radius: axes[2],
             inscribed_radius: axes[0],
             condition: condition_bound(&e.q, &ldl),
+            unscaled: diagonal_in_safe_range(&e.q),
         })
     }
 
@@ -41,12 +46,14 @@ impl PreparedEllipsoid {
     /// Exact up to one rounding per stored number; the condition number is unchanged.
     pub fn scaled(&self, factor: f64) -> Self {
         let f2 = factor * factor;
+        let q = self.q.map(|x| x * f2);
         Self {
-            q: self.q.map(|x| x * f2),
+            q,
             ldl: self.ldl.scaled(f2),
             bounding_radius: self.bounding_radius * factor,
             inscribed_radius: self.inscribed_radius * factor,
             condition: self.condition,
+            unscaled: diagonal_in_safe_range(&q),
         }
     }
 

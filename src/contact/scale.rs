@@ -5,7 +5,6 @@
 //! underflows, and the result is scaled back.
 
 use super::ldl::Ldl;
-use super::prepared::PreparedEllipsoid;
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
 
 /// Inputs whose largest |r| and all diagonal entries of Q lie within
@@ -24,11 +23,26 @@ pub(crate) struct Prepared {
     pub l1: Ldl,
     pub l2: Ldl,
     /// `log2` of the factor that turns μ² of the scaled pair into μ² of the input.
-    mu2_exp: i32,
+    pub mu2_exp: i32,
 }
 
 impl Prepared {
+    /// The pair as it stands, for input that [`needs_no_rescaling`] and whose forms
+    /// factor as `l1`, `l2`.
     #[inline(always)]
+    pub fn unscaled(r12: &Vec3, q1: &Sym3, q2: &Sym3, l1: Ldl, l2: Ldl) -> Self {
+        Self {
+            r: *r12,
+            q1: *q1,
+            q2: *q2,
+            l1,
+            l2,
+            mu2_exp: 0,
+        }
+    }
+
+    /// Validates the pair (typed errors naming the input, index and value) and rescales
+    /// it if needed.
     pub fn new(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Self, ContactError> {
         check_finite("r12", r12)?;
         check_finite("q1", q1)?;
@@ -41,33 +55,6 @@ impl Prepared {
             return Self::factor(*r12, *q1, *q2, 0);
         }
         Self::rescaled(r12, q1, q2, qmax, rmax)
-    }
-
-    /// A pair of prepared shapes as it stands, or `None` if `r12` is not finite or any
-    /// number is outside the range where no rescaling is needed.
-    #[inline(always)]
-    pub fn with_factors(
-        r12: &Vec3,
-        e1: &PreparedEllipsoid,
-        e2: &PreparedEllipsoid,
-    ) -> Option<Self> {
-        let (q1, q2) = (e1.q(), e2.q());
-        let qmax = q1[0].max(q1[3]).max(q1[5]).max(q2[0]).max(q2[3]).max(q2[5]);
-        let qmin = q1[0].min(q1[3]).min(q1[5]).min(q2[0]).min(q2[3]).min(q2[5]);
-        let rmax = r12[0].abs().max(r12[1].abs()).max(r12[2].abs());
-        let in_range = |x: f64| x >= pow2(-SAFE_EXP) && x <= pow2(SAFE_EXP);
-        // `max` skips NaN, so r12 is checked on its own.
-        let finite = r12.iter().all(|x| x.is_finite());
-        (finite && in_range(qmax) && in_range(qmin) && (rmax == 0.0 || in_range(rmax))).then_some(
-            Self {
-                r: *r12,
-                q1: *q1,
-                q2: *q2,
-                l1: e1.ldl,
-                l2: e2.ldl,
-                mu2_exp: 0,
-            },
-        )
     }
 
     #[cold]
@@ -114,6 +101,11 @@ impl Prepared {
         })
     }
 
+    /// The same pair, standing for an input scaled by `2^mu2_exp` in μ².
+    pub fn with_mu2_exp(self, mu2_exp: i32) -> Self {
+        Self { mu2_exp, ..self }
+    }
+
     /// Scales μ² back to the input's units and packages the result.
     #[inline(always)]
     pub fn finish(
@@ -138,6 +130,33 @@ impl Prepared {
             iterations,
         })
     }
+}
+
+/// Whether every diagonal entry of `q1`, `q2` and the largest `|r12_i|` (unless all are
+/// 0) lie within `[2^-SAFE_EXP, 2^SAFE_EXP]`, so that the pair needs no rescaling.
+/// False for NaN or infinite `r12` or diagonal entries (every comparison with NaN
+/// fails); off-diagonal entries are the factorisation's business.
+#[inline(always)]
+pub(crate) fn needs_no_rescaling(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> bool {
+    diagonal_in_safe_range(q1) & diagonal_in_safe_range(q2) & offset_in_safe_range(r12)
+}
+
+/// The part of [`needs_no_rescaling`] about one quadratic form.
+#[inline(always)]
+pub(crate) fn diagonal_in_safe_range(q: &Sym3) -> bool {
+    let (lo, hi) = (pow2(-SAFE_EXP), pow2(SAFE_EXP));
+    let in_range = |x: f64| (x >= lo) & (x <= hi);
+    in_range(q[0]) & in_range(q[3]) & in_range(q[5])
+}
+
+/// The part of [`needs_no_rescaling`] about `r12`.
+#[inline(always)]
+pub(crate) fn offset_in_safe_range(r12: &Vec3) -> bool {
+    let r = r12.map(f64::abs);
+    let rmax = if r[0] > r[1] { r[0] } else { r[1] };
+    let rmax = if rmax > r[2] { rmax } else { r[2] };
+    let (lo, hi) = (pow2(-SAFE_EXP), pow2(SAFE_EXP));
+    (r[0] <= hi) & (r[1] <= hi) & (r[2] <= hi) & ((rmax >= lo) | (rmax == 0.0))
 }
 
 #[inline(always)]
@@ -217,6 +236,7 @@ fn pow2(k: i32) -> f64 {
 }
 
 /// `x · 2^e`, exact unless the result leaves the double range.
+#[inline]
 pub(crate) fn ldexp(mut x: f64, mut e: i32) -> f64 {
     while e > 1000 {
         x *= pow2(1000);

@@ -41,6 +41,43 @@ pub(crate) fn pencil_coefficients(m0: &Sym3, m1: &Sym3, x: &Vec3) -> ([f64; 3], 
     (a, b)
 }
 
+/// The matrix pieces of `adj(sM0 + tM1) = s² adj M0 + st M + t² adj M1`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PencilParts {
+    /// `adj M0`.
+    pub adj1: Sym3,
+    /// `adj M1`.
+    pub adj2: Sym3,
+    /// The polarised (mixed) adjugate `M`.
+    pub mixed: Sym3,
+}
+
+impl PencilParts {
+    #[inline(always)]
+    pub fn new(m0: &Sym3, m1: &Sym3) -> Self {
+        Self {
+            adj1: adjugate(m0),
+            adj2: adjugate(m1),
+            mixed: polarised_adjugate(m0, m1),
+        }
+    }
+
+    /// `adj(sM0 + tM1)`.
+    #[inline(always)]
+    pub fn adjugate_at(&self, s: f64, t: f64) -> Sym3 {
+        let (ss, st, tt) = (s * s, s * t, t * t);
+        let (a, m, b) = (&self.adj1, &self.mixed, &self.adj2);
+        [
+            ss * a[0] + st * m[0] + tt * b[0],
+            ss * a[1] + st * m[1] + tt * b[1],
+            ss * a[2] + st * m[2] + tt * b[2],
+            ss * a[3] + st * m[3] + tt * b[3],
+            ss * a[4] + st * m[4] + tt * b[4],
+            ss * a[5] + st * m[5] + tt * b[5],
+        ]
+    }
+}
+
 /// Adjugate of a symmetric matrix, itself symmetric.
 #[inline(always)]
 pub(crate) fn adjugate(m: &Sym3) -> Sym3 {

@@ -1,0 +1,155 @@
+//! `f`, `g = −f′` and `g′` in double precision from the LDLᵀ factors of `Q(λ)`, and the
+//! bracketed Newton iteration on them that the overlap decision runs.
+//!
+//! `f(λ) = λ(1−λ) rᵀs`, `g = (2λ−1) rᵀs + λ(1−λ) sᵀu` and
+//! `g′ = 2rᵀs + 2(1−2λ) sᵀu − 2λ(1−λ) uᵀQ⁻¹u > 0`, with `s = Q(λ)⁻¹r` and
+//! `u = (Q2−Q1)s` (pw85 manual, "Optimization of the function f"). The iteration starts
+//! from the maximiser for two spheres, `λ₀ = √b / (√a + √b)` with `a = rᵀQ1⁻¹r`,
+//! `b = rᵀQ2⁻¹r`, keeps a bracket `[lo, hi]` on the sign of `g`, and falls back to
+//! bisection when a Newton step leaves it.
+
+use super::ldl::Ldl;
+use super::perram_wertheim::GAIN_TOL;
+use super::scale::Prepared;
+use super::sym::{dot, sym_mul};
+use super::{ContactError, Sym3, Vec3};
+
+/// One evaluation of `f`, `g` and `g′` at λ, with the factorisation of `Q(λ)`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Eval {
+    pub lambda: f64,
+    pub f: f64,
+    pub g: f64,
+    pub gp: f64,
+    pub ldl: Ldl,
+    q: Sym3,
+}
+
+impl Eval {
+    /// Evaluates at `lambda` in double precision.
+    #[inline(always)]
+    pub fn at(
+        lambda: f64,
+        r: &Vec3,
+        q1: &Sym3,
+        q2: &Sym3,
+        q12: &Sym3,
+    ) -> Result<Self, ContactError> {
+        let m = 1.0 - lambda;
+        let (q, ldl) = factor_at(lambda, q1, q2)?;
+        let s = ldl.solve(r);
+        let rs = dot(r, &s);
+        let u = sym_mul(q12, &s);
+        let su = dot(&s, &u);
+        let uv = ldl.quadratic_form(&u);
+        let lm = lambda * m;
+        Ok(Self {
+            lambda,
+            f: lm * rs,
+            g: (2.0 * lambda - 1.0) * rs + lm * su,
+            gp: 2.0 * rs + 2.0 * (1.0 - 2.0 * lambda) * su - 2.0 * lm * uv,
+            ldl,
+            q,
+        })
+    }
+
+    /// The gain `g² / (2g′)` predicted by the Newton model, i.e. how far `f(λ)` is
+    /// below its maximum to second order; 0 where rounding made `g′ ≤ 0` (f flat).
+    #[inline(always)]
+    pub fn gain(&self) -> f64 {
+        if self.gp > 0.0 {
+            self.g * self.g / (2.0 * self.gp)
+        } else {
+            0.0
+        }
+    }
+
+    /// Upper bound of the condition number of `Q(λ)`: `tr · σ₂ / det`, where `σ₂` is
+    /// the sum of the principal 2×2 minors (`λ_max ≤ tr`, `λ_min ≥ det / σ₂`).
+    pub fn condition_bound(&self) -> f64 {
+        condition_bound(&self.q, &self.ldl)
+    }
+}
+
+/// `Q(λ) = (1−λ)Q1 + λQ2` in double precision, and its factors.
+///
+/// A convex combination of two positive-definite matrices is positive definite, so
+/// failure here means rounding at the edge of [`MIN_RELATIVE_PIVOT`](super::MIN_RELATIVE_PIVOT).
+#[inline(always)]
+pub(crate) fn factor_at(lambda: f64, q1: &Sym3, q2: &Sym3) -> Result<(Sym3, Ldl), ContactError> {
+    let m = 1.0 - lambda;
+    let q: Sym3 = std::array::from_fn(|k| m * q1[k] + lambda * q2[k]);
+    let ldl = Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
+        what: "(1−λ)q1 + λq2",
+        pivot,
+        value,
+    })?;
+    Ok((q, ldl))
+}
+
+/// `tr · σ₂ / det` of a factored matrix; see [`Eval::condition_bound`].
+#[inline(always)]
+pub(crate) fn condition_bound(q: &Sym3, ldl: &Ldl) -> f64 {
+    let tr = q[0] + q[3] + q[5];
+    let s2 = q[0] * q[3] - q[1] * q[1] + q[0] * q[5] - q[2] * q[2] + q[3] * q[5] - q[4] * q[4];
+    tr * s2 / (ldl.d[0] * ldl.d[1] * ldl.d[2])
+}
+
+/// The bracketed Newton iteration, one evaluation per [`Newton::step`].
+pub(crate) struct Newton<'a> {
+    pub p: &'a Prepared,
+    pub q12: Sym3,
+    pub lo: f64,
+    pub hi: f64,
+    pub lambda: f64,
+    pub iterations: u32,
+}
+
+impl<'a> Newton<'a> {
+    /// Starts from the two-sphere maximiser; `a = rᵀQ1⁻¹r`, `b = rᵀQ2⁻¹r`, both > 0.
+    #[inline(always)]
+    pub fn new(p: &'a Prepared, a: f64, b: f64) -> Self {
+        let (sa, sb) = (a.sqrt(), b.sqrt());
+        let q12 = std::array::from_fn(|k| p.q2[k] - p.q1[k]);
+        Self {
+            p,
+            q12,
+            lo: 0.0,
+            hi: 1.0,
+            lambda: sb / (sa + sb),
+            iterations: 0,
+        }
+    }
+
+    /// Evaluates at the current λ, narrows the bracket and moves λ to the next
+    /// iterate. Returns the evaluation and whether the iteration has converged (the
+    /// predicted gain is below [`GAIN_TOL`], or λ can no longer move).
+    #[inline(always)]
+    pub fn step(&mut self) -> Result<(Eval, bool), ContactError> {
+        let e = Eval::at(self.lambda, &self.p.r, &self.p.q1, &self.p.q2, &self.q12)?;
+        self.iterations += 1;
+        if !(e.g.is_finite() && e.gp.is_finite()) {
+            return Err(ContactError::Overflow {
+                what: "the residual g(λ)",
+            });
+        }
+        if e.g < 0.0 {
+            self.lo = e.lambda;
+        } else if e.g > 0.0 {
+            self.hi = e.lambda;
+        } else {
+            return Ok((e, true));
+        }
+        let newton = e.lambda - e.g / e.gp;
+        let inside = e.gp > 0.0 && newton >= self.lo && newton <= self.hi;
+        let done = (e.gp > 0.0 && e.gain() <= GAIN_TOL * e.f) || newton == e.lambda;
+        self.lambda = if inside {
+            newton
+        } else if done {
+            e.lambda
+        } else {
+            0.5 * (self.lo + self.hi)
+        };
+        Ok((e, done))
+    }
+}

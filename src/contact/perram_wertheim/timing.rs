@@ -1,0 +1,101 @@
+//! Where the time of `contact_function` goes, and a fixed workload for instruction
+//! counts. Both are `#[ignore]`d: run them with `--ignored --nocapture`.
+
+use super::*;
+use crate::io::cases::{Case, CaseTable};
+use std::hint::black_box;
+
+fn typical_cases() -> Vec<Case> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/contact_typical.csv"
+    );
+    let t = CaseTable::read(std::fs::File::open(path).unwrap()).unwrap();
+    (0..t.rows.len()).map(|i| t.case(i).unwrap()).collect()
+}
+
+type Stage<'a> = (&'a str, &'a dyn Fn(&Case) -> f64);
+
+/// Median and fastest mean time per call of each stage over 1000 passes of the typical
+/// set, the stages interleaved pass by pass so that they see the same machine load.
+fn time(cases: &[Case], stages: &[Stage]) {
+    let mut per_call = vec![vec![]; stages.len()];
+    for _ in 0..1000 {
+        for (k, (_, f)) in stages.iter().enumerate() {
+            let s = std::time::Instant::now();
+            for c in cases {
+                black_box(f(black_box(c)));
+            }
+            per_call[k].push(s.elapsed().as_nanos() as f64 / cases.len() as f64);
+        }
+    }
+    for ((name, _), v) in stages.iter().zip(&mut per_call) {
+        v.sort_by(f64::total_cmp);
+        let (min, median) = (v[0], v[v.len() / 2]);
+        println!("{name:>12}: median {median:6.1} ns, fastest {min:6.1} ns");
+    }
+}
+
+/// Cumulative cost of the stages of `contact_function`: each line adds one stage.
+#[test]
+#[ignore]
+fn split_of_the_cost() {
+    let cases = typical_cases();
+    let setup = |c: &Case| {
+        let (l1, l2) = (Ldl::factor(&c.q1).unwrap(), Ldl::factor(&c.q2).unwrap());
+        let p = Prepared::unscaled(&c.r12, &c.q1, &c.q2, l1, l2);
+        let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
+        let parts = PencilParts::new(&p.q1, &p.q2);
+        let ends = [p.l1.det(), p.l2.det(), a, b];
+        let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, ends);
+        (p, parts, rational, b.sqrt() / (a.sqrt() + b.sqrt()))
+    };
+    time(
+        &cases,
+        &[
+            ("prepare", &|c| {
+                let (l1, l2) = (Ldl::factor(&c.q1).unwrap(), Ldl::factor(&c.q2).unwrap());
+                Prepared::unscaled(&c.r12, &c.q1, &c.q2, l1, l2).r[0]
+            }),
+            ("+rational", &|c| {
+                let (_, _, rational, t0) = setup(c);
+                rational.f(t0)
+            }),
+            ("+predictor", &|c| {
+                let (_, _, rational, t0) = setup(c);
+                predict(&rational, t0, CORRECTOR_SWITCH_GAIN).unwrap().0
+            }),
+            ("+corrector", &|c| {
+                let (p, parts, rational, t0) = setup(c);
+                let refiner = Refiner::new(&p, &parts, &rational);
+                let (t, _, it) = predict(&rational, t0, CORRECTOR_SWITCH_GAIN).unwrap();
+                correct(&p, &refiner, t, it).unwrap().mu2
+            }),
+            ("accurate", &|c| {
+                contact_function(&c.r12, &c.q1, &c.q2).unwrap().mu2
+            }),
+            ("fast", &|c| {
+                contact_function_fast(&c.r12, &c.q1, &c.q2).unwrap().mu2
+            }),
+        ],
+    );
+}
+
+/// A fixed workload for instruction counts (`valgrind --tool=callgrind`): passes of
+/// the method named by `GRAINPACK_COUNT` (accurate or fast) over the typical set.
+#[test]
+#[ignore]
+fn instruction_count_workload() {
+    let cases = typical_cases();
+    let passes: usize = std::env::var("GRAINPACK_PASSES").map_or(20, |v| v.parse().unwrap());
+    let accurate = std::env::var("GRAINPACK_COUNT").map_or(true, |v| v == "accurate");
+    let method = match accurate {
+        true => contact_function,
+        false => contact_function_fast,
+    };
+    for _ in 0..passes {
+        for c in &cases {
+            black_box(method(black_box(&c.r12), &c.q1, &c.q2).unwrap());
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! Random pairs, rigid motions and the reference data, shared by the unit tests.
+
+use super::{Sym3, Vec3};
+use nalgebra::{Matrix3, Rotation3, Vector3};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+pub(crate) type Pair = (Vec3, Sym3, Sym3);
+
+pub(crate) fn sphere(radius: f64) -> Sym3 {
+    let s = radius * radius;
+    [s, 0.0, 0.0, s, 0.0, s]
+}
+
+pub(crate) fn random_rotation(rng: &mut StdRng) -> Rotation3<f64> {
+    Rotation3::from_scaled_axis(Vector3::from_fn(|_, _| rng.random_range(-2.0..2.0)))
+}
+
+/// The pair turned by `rot`: `r → R r`, `Q → R Q Rᵀ`.
+pub(crate) fn rotate(rot: &Rotation3<f64>, (r, q1, q2): &Pair) -> Pair {
+    let m = rot.matrix();
+    let turn = |q: &Sym3| {
+        let f = m * Matrix3::new(q[0], q[1], q[2], q[1], q[3], q[4], q[2], q[4], q[5]);
+        let f = f * m.transpose();
+        [
+            f[(0, 0)],
+            f[(0, 1)],
+            f[(0, 2)],
+            f[(1, 1)],
+            f[(1, 2)],
+            f[(2, 2)],
+        ]
+    };
+    ((m * Vector3::from(*r)).into(), turn(q1), turn(q2))
+}
+
+/// Random pairs: semi-axes log-uniform in `[0.1, 10]`, random orientations, `r12` of
+/// random direction and length in `[0, 25]`, each with `κ = (a_max / a_min)²`, a bound
+/// on the condition number of every `(1−λ)Q1 + λQ2`.
+pub(crate) fn random_pairs(seed: u64, n: usize) -> Vec<(Pair, f64)> {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let mut one = |_| {
+        let a: [f64; 6] = std::array::from_fn(|_| 10f64.powf(rng.random_range(-1.0..1.0)));
+        let r = [rng.random_range(0.0..25.0), 0.0, 0.0];
+        let diag = |a: &[f64]| [a[0] * a[0], 0.0, 0.0, a[1] * a[1], 0.0, a[2] * a[2]];
+        let (r, q1, _) = rotate(&random_rotation(&mut rng), &(r, diag(&a[..3]), sphere(1.0)));
+        let q2 = rotate(&random_rotation(&mut rng), &(r, diag(&a[3..]), sphere(1.0))).1;
+        let (lo, hi) = a
+            .iter()
+            .fold((f64::MAX, 0.0_f64), |(l, h), &x| (l.min(x), h.max(x)));
+        ((r, q1, q2), (hi / lo).powi(2))
+    };
+    (0..n).map(&mut one).collect()
+}
+
+/// The rows of a reference file in `tests/data`: each pair with its μ² and λ (50
+/// correct digits, rounded to doubles).
+pub(crate) fn reference_rows(name: &str) -> Vec<(crate::io::cases::Case, f64, f64)> {
+    let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    let table = crate::io::cases::CaseTable::read(std::fs::File::open(path).unwrap()).unwrap();
+    (0..table.rows.len())
+        .map(|i| {
+            let number = |column| table.number(i, column).unwrap();
+            (table.case(i).unwrap(), number("mu2"), number("lambda"))
+        })
+        .collect()
+}
