@@ -20,6 +20,9 @@ OUT_DIR is a directory `pack` wrote. The grains of `grains.csv` are the referenc
   of the box's size at the origin, with integer cell data `material` and `phase`, x
   fastest. The voxel at each large grain's centre belongs to that grain. With
   `rve_fill = "grains"` every voxel belongs to a grain.
+- `rve_grains.csv`, if the RVE is there: a row per grain whose voxel counts are those of
+  `rve.vti`, and as many split grains as `summary.json` says.
+- `statistics.png`, `sections.png`, if present: PNGs that Pillow decodes whole.
 
 Exit code 0 when every check passes, 1 with the failures listed otherwise.
 """
@@ -252,6 +255,32 @@ def check_vti(path, g, box, n_phases, fill):
     print(f"rve.vti (DAMASK): {tuple(cells.tolist())} cells, {grid.N_materials} materials, fill {fill}")
 
 
+def check_rve_grains(path, rve, g, summary):
+    """rve_grains.csv: a row per grain whose voxel counts are those of rve.vti."""
+    import pyvista as pv
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    check([int(r["id"]) for r in rows] == list(g["id"]), f"{path}: ids differ from grains.csv")
+    material = np.asarray(pv.read(rve).cell_data["material"])
+    counts = np.bincount(material, minlength=len(rows))
+    check(all(int(r["voxels"]) == counts[i] for i, r in enumerate(rows)),
+          f"{path}: voxel counts differ from rve.vti")
+    check(all(int(r["pieces"]) >= (1 if int(r["voxels"]) else 0) for r in rows),
+          f"{path}: a grain with voxels has no piece")
+    split = sum(int(r["pieces"]) > 1 for r in rows)
+    check(split == summary["rve"]["split_grains"], f"{path}: {split} split grains, summary says otherwise")
+    print(f"rve_grains.csv: {len(rows)} grains, voxel counts as in rve.vti, {split} split")
+
+
+def check_png(path):
+    """A PNG that Pillow decodes whole."""
+    from PIL import Image
+    with Image.open(path) as im:
+        im.load()
+        check(im.size[0] > 100 and im.size[1] > 100, f"{path}: {im.size} pixels")
+    print(f"{os.path.basename(path)} (Pillow): {im.size[0]}x{im.size[1]}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("out", help="a directory pack wrote")
@@ -277,6 +306,13 @@ def main():
         check_vti(rve, g, box, n_phases, fill)
     else:
         print("rve.vti: not written, not checked")
+    table = os.path.join(out, "rve_grains.csv")
+    if os.path.exists(rve) and check(os.path.exists(table), f"{table} missing"):
+        check_rve_grains(table, rve, g, summary)
+    for name in ["statistics.png", "sections.png"]:
+        path = os.path.join(out, name)
+        if os.path.exists(path):
+            check_png(path)
     print(f"check_exports: {passed[0]} passed, {len(failures)} failed")
     return 1 if failures else 0
 
