@@ -36,6 +36,7 @@ pub use perram_wertheim::{
 };
 pub use prepared::PreparedEllipsoid;
 pub use refine::REFINEMENT_TOL;
+pub(crate) use sym::dot;
 
 /// A vector in 3D: `[x, y, z]`.
 pub type Vec3 = [f64; 3];

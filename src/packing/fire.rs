@@ -8,6 +8,7 @@ use super::forces::Forces;
 use super::neighbours::Neighbours;
 use super::state::State;
 use super::{Counters, PackError, Progress, CONTACT_GAP};
+use crate::contact::dot;
 use crate::io::scene::Boundary;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
@@ -154,10 +155,13 @@ impl Fire {
         rotate: bool,
     ) -> Result<(), PackError> {
         let n = state.len();
-        // Angular degrees of freedom in length units: ω × (S · largest semi-axis).
+        // Angular degrees of freedom in length units: ω × (S · largest semi-axis);
+        // only rotating grains need them.
         self.levers.clear();
-        self.levers
-            .extend(state.shapes.iter().map(|e| big_s * e.bounding_radius()));
+        if rotate {
+            self.levers
+                .extend(state.shapes.iter().map(|e| big_s * e.bounding_radius()));
+        }
         let levers = std::mem::take(&mut self.levers);
         let lever = |i: usize| levers[i];
         let mut power = 0.0;
@@ -238,10 +242,6 @@ impl Fire {
 /// `y += a x`.
 fn axpy(y: &mut [f64; 3], a: f64, x: &[f64; 3]) {
     y.iter_mut().zip(x).for_each(|(y, x)| *y += a * x);
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 fn clamp_norm(v: &mut [f64; 3], limit: f64) {

@@ -15,7 +15,7 @@
 
 use super::neighbours::relative;
 use super::state::State;
-use crate::contact::{contact_geometry_fast, ContactGeometry, PreparedEllipsoid};
+use crate::contact::{contact_geometry_fast, dot, ContactGeometry, PreparedEllipsoid};
 use crate::io::scene::Boundary;
 use crate::octree::Pair;
 use rayon::prelude::*;
@@ -51,8 +51,6 @@ pub(crate) struct Forces {
     last: Vec<[f64; 3]>,
     /// The list build the bounds refer to.
     build: u64,
-    /// Pairs the Lipschitz bound let skip, over the run.
-    pub skipped: u64,
 }
 
 /// μ₁ is the gauge function of the Minkowski sum `E_i ⊕ (−E_j)`, which contains the
@@ -148,7 +146,6 @@ impl Forces {
         // Collected in pair order whatever the threads (rayon keeps the order).
         self.hits.par_extend(found);
         self.tested = tested.into_inner();
-        self.skipped += pairs.len() as u64 - self.tested;
         self.energy = 0.0;
         self.overlaps = 0;
         self.min_mu1 = f64::INFINITY;
@@ -281,10 +278,6 @@ fn sphere_geometry(r: &[f64; 3], ri: f64, rj: f64) -> Option<ContactGeometry> {
         normal: r.map(|x| x / d),
         gap: d - (ri + rj),
     })
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 pub(crate) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {

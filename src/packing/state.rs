@@ -19,6 +19,8 @@ pub(crate) struct State {
     pub shapes: Vec<PreparedEllipsoid>,
     /// Volumes at target size.
     pub volumes: Vec<f64>,
+    /// Their sum.
+    pub total_volume: f64,
     /// Half-widths `√Q_kk` along the box axes at target size, for the walls.
     pub half_widths: Vec<[f64; 3]>,
     /// The largest bounding radius at target size.
@@ -51,6 +53,7 @@ impl State {
                 .collect(),
             shapes: Vec::with_capacity(n),
             volumes: Vec::with_capacity(n),
+            total_volume: 0.0,
             half_widths: Vec::with_capacity(n),
             max_bounding_radius: 0.0,
             domain: *domain,
@@ -65,6 +68,7 @@ impl State {
             state.shapes.push(shape);
             state.half_widths.push(widths);
         }
+        state.total_volume = state.volumes.iter().sum();
         Ok(state)
     }
 
@@ -110,7 +114,7 @@ impl State {
 
     /// Packing fraction at scale `s`.
     pub fn fraction(&self, s: f64) -> f64 {
-        s * s * s * self.volumes.iter().sum::<f64>() / self.domain.volume()
+        s * s * s * self.total_volume / self.domain.volume()
     }
 
     /// Wraps every centre into `[0, L)` in a periodic box; in a walled box, puts it

@@ -3,8 +3,9 @@
 //! (`statistics.png`). The RVE's totals go into the summary.
 
 use super::{OutputFiles, ReportError, Summary};
+use crate::contact::dot;
 use crate::io::plots::{render_statistics_png, VoxelSample};
-use crate::io::report::stats::{equivalent_diameter, tilt_angle};
+use crate::io::report::stats::tilt_angle_of;
 use crate::io::scene::{rotation_column, Domain, Orientation, OutputSpec, Phase, RveFill};
 use crate::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill, VoxelReport};
 use crate::packing::PackedGrain;
@@ -175,38 +176,16 @@ fn voxel_samples(
                 Orientation::Tilt {
                     axis: tilt_axis,
                     angle,
-                } => Some(tilt_angle(quaternion_from_axis(axis), *tilt_axis, angle)),
+                } => Some(tilt_angle_of(axis, *tilt_axis, angle)),
                 _ => Some(axis[2].abs().min(1.0).acos()),
             };
             Some(VoxelSample {
                 phase: g.phase,
-                equivalent_diameter: equivalent_diameter_of_volume(v.voxel_volume),
+                // A sphere of the voxel volume: (6V/π)^(1/3).
+                equivalent_diameter: (6.0 * v.voxel_volume / std::f64::consts::PI).cbrt(),
                 aspect_ratio: a1 / a2,
                 tilt,
             })
         })
         .collect()
-}
-
-fn equivalent_diameter_of_volume(volume: f64) -> f64 {
-    // A sphere of that volume: radius (3V/4π)^(1/3); `equivalent_diameter` of its axes.
-    let r = (3.0 * volume / (4.0 * std::f64::consts::PI)).cbrt();
-    equivalent_diameter([r, r, r])
-}
-
-/// A unit quaternion whose first column is `axis` (the shortest rotation from x̂).
-fn quaternion_from_axis(axis: [f64; 3]) -> [f64; 4] {
-    // q = (1 + x̂·a, x̂ × a) normalised; x̂ × a = (0, −a_z, a_y).
-    let w = 1.0 + axis[0];
-    if w <= 0.0 {
-        // a = −x̂: half a turn about z.
-        return [0.0, 0.0, 0.0, 1.0];
-    }
-    let q = [w, 0.0, -axis[2], axis[1]];
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    q.map(|x| x / n)
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }

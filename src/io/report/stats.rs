@@ -130,7 +130,11 @@ pub fn aspect_ratio(semi_axes: [f64; 3]) -> f64 {
 /// assert!((theta - 0.6).abs() < 1e-15);
 /// ```
 pub fn tilt_angle(q: [f64; 4], axis: Axis, law: &VonMises) -> f64 {
-    let e = rotation_column(q, 0);
+    tilt_angle_of(rotation_column(q, 0), axis, law)
+}
+
+/// [`tilt_angle`] of a first axis `e` given directly (a unit vector).
+pub fn tilt_angle_of(e: [f64; 3], axis: Axis, law: &VonMises) -> f64 {
     let (i, j) = ((axis.index() + 1) % 3, (axis.index() + 2) % 3);
     let theta = e[j].atan2(e[i]);
     theta + 2.0 * PI * ((law.mean - theta) / (2.0 * PI)).round()
