@@ -13,7 +13,7 @@ use quick_xml::Reader;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use support::{extent, read_grains, Grain};
+use support::{extent, files_in, read_grains, Grain};
 
 /// A point's distance from its ellipsoid, in the ellipsoid's own units
 /// `|diag(1/a) Rᵀ (x − c)| − 1`: the writer and nalgebra build R from the quaternion
@@ -62,9 +62,7 @@ orientation = { kind = "aligned", axis = "z" }
 
 /// Runs `pack scene.toml --out out --quiet` in a fresh directory; returns `out`.
 fn pack(name: &str, scene: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("grainpack-exports-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = support::scratch("exports", name);
     std::fs::write(dir.join("scene.toml"), scene).unwrap();
     let run = Command::new(env!("CARGO_BIN_EXE_pack"))
         .args(["scene.toml", "--out", "out", "--quiet"])
@@ -74,15 +72,6 @@ fn pack(name: &str, scene: &str) -> PathBuf {
     let err = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(0), "{err}");
     dir.join("out")
-}
-
-fn files_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// One `DataArray`: where it is (`CellData`, `Points`, ...), its attributes, and its

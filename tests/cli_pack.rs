@@ -7,7 +7,7 @@ mod support;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use support::{check_overlaps, extent, read_grains, Grain};
+use support::{check_overlaps, extent, files_in, read_grains, Grain};
 
 fn pack_in(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_pack"))
@@ -19,10 +19,7 @@ fn pack_in(dir: &Path, args: &[&str]) -> Output {
 
 /// A fresh, empty directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("grainpack-pack-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    support::scratch("pack", name)
 }
 
 fn stderr(run: &Output) -> String {
@@ -84,19 +81,6 @@ fn run_scene(dir: &Path, text: &str, extra: &[&str]) -> (Output, PathBuf) {
     let mut args = vec!["scene.toml", "--out", "out", "--quiet"];
     args.extend(extra);
     (pack_in(dir, &args), dir.join("out"))
-}
-
-fn files_in(dir: &Path) -> Vec<String> {
-    match std::fs::read_dir(dir) {
-        Ok(entries) => {
-            let mut names: Vec<String> = entries
-                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-                .collect();
-            names.sort();
-            names
-        }
-        Err(_) => Vec::new(),
-    }
 }
 
 // ---------------------------------------------------------------------------------
@@ -339,10 +323,16 @@ fn check_written_packing(out: &Path, periodic: bool) -> (Vec<Grain>, Value) {
         "narrow_phase",
         "response",
         "packing",
+        "outputs",
         "total",
     ] {
         assert!(number(&summary["timings"][key]) >= 0.0, "{key}");
     }
+    let timings = &summary["timings"];
+    assert!(
+        number(&timings["total"]) >= number(&timings["packing"]) + number(&timings["outputs"]),
+        "{timings}"
+    );
     for key in ["steps", "fire_steps", "list_builds", "pairs_tested"] {
         assert!(summary["counters"][key].is_u64(), "{key}");
     }

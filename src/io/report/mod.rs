@@ -118,6 +118,7 @@ pub fn write_outputs(
     grains: &[PackedGrain],
     summary: &mut Summary,
 ) -> Result<Vec<PathBuf>, ReportError> {
+    let started = std::time::Instant::now();
     let (output, domain) = (&scene.output, &scene.domain);
     if output.writes_anything() {
         create_dir(&output.dir)?;
@@ -133,6 +134,9 @@ pub fn write_outputs(
         files.write(CENTERS_VTP, |w| write_centers_vtp(w, grains))?;
     }
     write_derived(output, &scene.phases, domain, grains, summary, &mut files)?;
+    let outputs = started.elapsed().as_secs_f64();
+    summary.timings.outputs = outputs;
+    summary.timings.total += outputs;
     if output.summary_json {
         files.write(SUMMARY_JSON, |w| write_summary_json(w, summary))?;
     }

@@ -88,7 +88,10 @@ pub struct TimingSummary {
     pub response: f64,
     /// The packing loop with its final check.
     pub packing: f64,
-    /// The whole run up to the report.
+    /// Writing the outputs before `summary.json` (grain table, VTK, voxel RVE, plots).
+    pub outputs: f64,
+    /// The whole run: reading the scene, drawing the grains, packing, statistics and
+    /// the outputs (all but `summary.json` itself).
     pub total: f64,
 }
 
@@ -215,6 +218,7 @@ impl Summary {
                 narrow_phase: c.narrow_phase.as_secs_f64(),
                 response: c.response.as_secs_f64(),
                 packing: run.packing.as_secs_f64(),
+                outputs: 0.0,
                 total: run.total.as_secs_f64(),
             },
             counters: CounterSummary {

@@ -73,40 +73,9 @@ impl VonMises {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::scene::distribution::sample_laws;
     use crate::io::scene::special::simpson;
     use std::f64::consts::PI;
-
-    fn laws() -> [Distribution; 5] {
-        [
-            Distribution::LogNormal {
-                sigma: 0.8,
-                scale: 14.0,
-                loc: 0.0,
-                min: 6.0,
-                max: 16.0,
-            },
-            Distribution::LogNormal {
-                sigma: 0.3,
-                scale: 2.0,
-                loc: 1.0,
-                min: 1.5,
-                max: 6.0,
-            },
-            Distribution::Normal {
-                mean: 10.0,
-                std: 3.0,
-                min: 4.0,
-                max: 12.0,
-            },
-            Distribution::Normal {
-                mean: 1.0,
-                std: 0.2,
-                min: 0.1,
-                max: 5.0,
-            },
-            Distribution::Uniform { min: 2.0, max: 5.0 },
-        ]
-    }
 
     fn tilts() -> [VonMises; 4] {
         [
@@ -136,7 +105,7 @@ mod tests {
     /// accepted mass rests on the erfc fit (fractional error 1.2e-7), so 1e-6.
     #[test]
     fn pdf_integrates_to_one_over_the_support() {
-        for d in laws() {
+        for d in sample_laws() {
             let (lo, hi) = d.support();
             let total = simpson(|x| d.pdf(x), lo, hi, 4000);
             assert!((total - 1.0).abs() < 1e-6, "{d:?}: {total}");
@@ -166,7 +135,7 @@ mod tests {
     /// [`CDF_ROUNDING`]`/h`.
     #[test]
     fn pdf_is_the_derivative_of_the_cdf() {
-        for d in laws() {
+        for d in sample_laws() {
             let (lo, hi) = d.support();
             let h = 1e-4 * (hi - lo);
             for k in 1..20 {

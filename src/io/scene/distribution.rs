@@ -330,6 +330,41 @@ fn binomial(n: u32, k: u32) -> f64 {
     (0..k).fold(1.0, |c, i| c * f64::from(n - i) / f64::from(i + 1))
 }
 
+/// Laws the tests of this module and of [`super::density`] check: kanapy's size law,
+/// a shifted lognormal, normals cut on one and on both sides, a uniform.
+#[cfg(test)]
+pub(crate) fn sample_laws() -> [Distribution; 5] {
+    [
+        Distribution::LogNormal {
+            sigma: 0.8,
+            scale: 14.0,
+            loc: 0.0,
+            min: 6.0,
+            max: 16.0,
+        },
+        Distribution::LogNormal {
+            sigma: 0.3,
+            scale: 2.0,
+            loc: 1.0,
+            min: 1.5,
+            max: 6.0,
+        },
+        Distribution::Normal {
+            mean: 10.0,
+            std: 3.0,
+            min: 4.0,
+            max: 12.0,
+        },
+        Distribution::Normal {
+            mean: 1.0,
+            std: 0.2,
+            min: 0.1,
+            max: 5.0,
+        },
+        Distribution::Uniform { min: 2.0, max: 5.0 },
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -365,24 +400,7 @@ mod tests {
     /// is the tolerance.
     #[test]
     fn closed_form_moments_agree_with_quadrature_of_the_density() {
-        let laws = [
-            KANAPY_SIZE,
-            Distribution::LogNormal {
-                sigma: 0.3,
-                scale: 2.0,
-                loc: 1.0,
-                min: 1.5,
-                max: 6.0,
-            },
-            Distribution::Normal {
-                mean: 10.0,
-                std: 3.0,
-                min: 4.0,
-                max: 12.0,
-            },
-            Distribution::Uniform { min: 2.0, max: 5.0 },
-        ];
-        for d in laws {
+        for d in sample_laws() {
             let (lo, hi) = d.support();
             let total = simpson(|x| pdf(&d, x), lo, hi, 4000);
             assert!(
