@@ -8,7 +8,8 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use grainpack::io::scene::{GrainCount, Scene};
+use grainpack::io::scene::{GrainCount, Rotation, Scene};
+use grainpack::packing::turn_angle;
 use std::fmt::Write as _;
 
 /// The scaling runs kanapy's grains at this packing fraction (the 10⁵ goal).
@@ -24,29 +25,54 @@ fn main() {
     let threads = rayon::current_num_threads();
 
     let mut report = format!("Machine: {}; {threads} threads.\n\n", common::machine());
-    report.push_str("| scene | rotation | grains | time (s) | fraction | target | stop | relaxations | FIRE steps | pairs tested | overlapping | min μ² | broad / narrow / response (s) |\n");
-    report.push_str("|---|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---|\n");
+    report.push_str("| scene | rotation | max turn (°) | grains | time (s) | fraction | target | stop | median / max turn (°) | relaxations | FIRE steps | pairs tested | overlapping | min μ² | broad / narrow / response (s) |\n");
+    report.push_str("|---|---|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---|\n");
     let scenes = [
         ("configs/grains.toml", None),
         ("configs/kanapy_elongated.toml", None),
-        ("configs/kanapy_elongated.toml", Some(true)),
+        (
+            "configs/kanapy_elongated.toml",
+            Some((Rotation::Axis, 20.0)),
+        ),
+        (
+            "configs/kanapy_elongated.toml",
+            Some((Rotation::Axis, 180.0)),
+        ),
+        (
+            "configs/kanapy_elongated.toml",
+            Some((Rotation::Free, 180.0)),
+        ),
         ("configs/density_spheres.toml", None),
-        ("configs/density_spheroids.toml", Some(false)),
+        (
+            "configs/density_spheroids.toml",
+            Some((Rotation::None, 180.0)),
+        ),
         ("configs/density_spheroids.toml", None),
     ];
     for (path, rotation) in scenes {
         let mut scene = Scene::from_path(format!("{root}/{path}").as_ref()).unwrap();
-        if let Some(r) = rotation {
+        if let Some((r, max_turn)) = rotation {
             scene.packing.rotation = r;
+            scene.packing.max_turn = f64::to_radians(max_turn);
         }
-        let (p, grains, secs) = common::pack_scene(&scene);
+        let (p, specs, secs) = common::pack_scene(&scene);
+        let mut turns: Vec<f64> = p
+            .grains
+            .iter()
+            .map(|g| turn_angle(specs[g.id as usize].quaternion, g.quaternion).to_degrees())
+            .collect();
+        turns.sort_by(f64::total_cmp);
         writeln!(
             report,
-            "| {path} | {} | {grains} | {secs:.2} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {:.6} | {:.2} / {:.2} / {:.2} |",
-            scene.packing.rotation,
+            "| {path} | {} | {:.0} | {} | {secs:.2} | {:.4} | {:.4} | {} | {:.1} / {:.1} | {} | {} | {} | {} | {:.6} | {:.2} / {:.2} / {:.2} |",
+            scene.packing.rotation.name(),
+            scene.packing.max_turn.to_degrees(),
+            specs.len(),
             p.fraction,
             scene.expected_fraction(),
             p.stop,
+            turns[turns.len() / 2],
+            turns[turns.len() - 1],
             p.counters.steps,
             p.counters.fire_steps,
             p.counters.pairs_tested,
@@ -88,7 +114,8 @@ fn main() {
         let side = base_side * (n as f64 / base_grains * base_fraction / SCALING_FRACTION).cbrt();
         scene.domain.size = [side; 3];
         scene.count = GrainCount::Fraction(SCALING_FRACTION);
-        let (p, grains, secs) = common::pack_scene(&scene);
+        let (p, specs, secs) = common::pack_scene(&scene);
+        let grains = specs.len();
         let per_step = 1e3 * secs / p.counters.fire_steps.max(1) as f64 / (grains as f64 / 1000.0);
         writeln!(
             scaling,

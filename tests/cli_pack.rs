@@ -333,6 +333,17 @@ fn check_written_packing(out: &Path, periodic: bool) -> (Vec<Grain>, Value) {
         number(&timings["total"]) >= number(&timings["packing"]) + number(&timings["outputs"]),
         "{timings}"
     );
+    let rotation = &summary["rotation"];
+    let (median, largest) = (
+        number(&rotation["median_turn_deg"]),
+        number(&rotation["largest_turn_deg"]),
+    );
+    assert!(median >= 0.0 && median <= largest, "{rotation}");
+    // The limit holds up to the rounding of acos near 1 (1e-7 rad).
+    assert!(largest <= number(&rotation["max_turn_deg"]) + 1e-5, "{rotation}");
+    if rotation["mode"] == "none" {
+        assert_eq!(largest, 0.0, "{rotation}");
+    }
     for key in ["steps", "fire_steps", "list_builds", "pairs_tested"] {
         assert!(summary["counters"][key].is_u64(), "{key}");
     }

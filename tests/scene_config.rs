@@ -4,7 +4,7 @@
 
 use grainpack::io::scene::{
     rotation_column, Axis, Boundary, Distribution, GrainCount, GrainSpec, Orientation, OutputSpec,
-    PackingParams, Scene, SceneError, VonMises,
+    PackingParams, Rotation, Scene, SceneError, VonMises,
 };
 use std::f64::consts::PI;
 use std::path::Path;
@@ -149,6 +149,30 @@ size = { distribution = "constant", value = 5 }
     assert_eq!(p.orientation, Orientation::Random);
     assert_eq!(scene.packing, PackingParams::default());
     assert_eq!(scene.output, OutputSpec::default());
+}
+
+#[test]
+fn rotation_takes_false_true_or_axis_and_max_turn_is_in_degrees() {
+    for (value, mode) in [
+        ("false", Rotation::None),
+        ("true", Rotation::Free),
+        ("\"axis\"", Rotation::Axis),
+    ] {
+        let text = with_extra(&format!("[packing]\nrotation = {value}\nmax_turn = 30"));
+        let scene = Scene::from_str(&text, "scene.toml").unwrap();
+        assert_eq!(scene.packing.rotation, mode, "{value}");
+        assert!((scene.packing.max_turn - 30f64.to_radians()).abs() < 1e-15);
+    }
+    // Grains of a tilt phase turn about its tilt axis; others have none.
+    let kanapy = load("configs/kanapy_elongated.toml");
+    let grains = kanapy.sample_grains(&mut kanapy.rng()).unwrap();
+    assert!(grains.iter().all(|g| g.turn_axis == Some([0.0, 0.0, 1.0])));
+    let base = Scene::from_str(BASE, "scene.toml").unwrap();
+    let grains = base.sample_grains(&mut base.rng()).unwrap();
+    for g in &grains {
+        let tilted = matches!(base.phases[g.phase].orientation, Orientation::Tilt { .. });
+        assert_eq!(g.turn_axis.is_some(), tilted);
+    }
 }
 
 #[test]
@@ -391,6 +415,18 @@ fn bad_packing_and_output_values_are_rejected() {
     assert_starts(
         &error(&with_extra("[packing]\nmax_steps = 0")),
         "scene.toml:20:13: packing.max_steps = 0: must be at least 1",
+    );
+    assert_starts(
+        &error(&with_extra("[packing]\nrotation = \"sideways\"")),
+        "scene.toml:20:12: packing.rotation = \"sideways\": must be false",
+    );
+    assert_starts(
+        &error(&with_extra("[packing]\nrotation = 1")),
+        "scene.toml:20:12: packing.rotation = 1: must be false",
+    );
+    assert_starts(
+        &error(&with_extra("[packing]\nmax_turn = 200")),
+        "scene.toml:20:12: packing.max_turn = 200: must lie in (0, 180] degrees",
     );
     assert_starts(
         &error(&with_extra("[output]\ndir = \"\"")),

@@ -46,7 +46,11 @@ pub fn update_section(path: &str, name: &str, text: &str) {
 #[allow(dead_code)] // not every bench packs
 pub fn pack_scene(
     scene: &grainpack::io::scene::Scene,
-) -> (grainpack::packing::Packing, usize, f64) {
+) -> (
+    grainpack::packing::Packing,
+    Vec<grainpack::io::scene::GrainSpec>,
+    f64,
+) {
     let specs = scene.sample_grains(&mut scene.rng()).unwrap();
     let t = std::time::Instant::now();
     let p = grainpack::packing::pack(
@@ -58,5 +62,6 @@ pub fn pack_scene(
         &mut |_| {},
     )
     .unwrap();
-    (p, specs.len(), t.elapsed().as_secs_f64())
+    let secs = t.elapsed().as_secs_f64();
+    (p, specs, secs)
 }

@@ -9,7 +9,7 @@ use super::neighbours::Neighbours;
 use super::state::State;
 use super::{Counters, PackError, Progress, CONTACT_GAP};
 use crate::contact::dot;
-use crate::io::scene::Boundary;
+use crate::io::scene::{Boundary, Rotation};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -44,7 +44,9 @@ pub(crate) struct Run<'a> {
     pub neighbours: Neighbours,
     pub forces: Forces,
     pub counters: Counters,
-    pub rotate: bool,
+    pub rotation: Rotation,
+    /// The most a grain may turn from its drawn orientation (radians).
+    pub max_turn: f64,
     pub stop: &'a AtomicBool,
     pub progress: &'a mut dyn FnMut(&Progress),
 }
@@ -69,6 +71,8 @@ pub(crate) struct Fire {
     velocity: Vec<[f64; 3]>,
     spin: Vec<[f64; 3]>,
     levers: Vec<f64>,
+    /// The torques each grain may follow, over their levers.
+    torques: Vec<[f64; 3]>,
     dt: f64,
     alpha: f64,
     positive: u32,
@@ -85,7 +89,8 @@ impl Fire {
         big_s: f64,
         budget: u64,
     ) -> Result<Outcome, PackError> {
-        let rotate = run.rotate;
+        let rotate = run.rotation != Rotation::None;
+        let turning = (run.rotation, run.max_turn);
         let n = state.len();
         self.velocity.clear();
         self.velocity.resize(n, [0.0; 3]);
@@ -134,7 +139,7 @@ impl Fire {
                 }
                 (previous_min, window_min) = (window_min, f64::INFINITY);
             }
-            self.step(state, forces, big_s, rotate)?;
+            self.step(state, forces, big_s, turning)?;
             counters.response += t2.elapsed();
         }
         Ok(Outcome::Budget)
@@ -152,23 +157,32 @@ impl Fire {
         state: &mut State,
         forces: &Forces,
         big_s: f64,
-        rotate: bool,
+        (mode, max_turn): (Rotation, f64),
     ) -> Result<(), PackError> {
         let n = state.len();
+        let rotate = mode != Rotation::None;
         // Angular degrees of freedom in length units: ω × (S · largest semi-axis);
         // only rotating grains need them.
         self.levers.clear();
+        self.torques.clear();
         if rotate {
             self.levers
                 .extend(state.shapes.iter().map(|e| big_s * e.bounding_radius()));
+            self.torques.extend((0..n).map(|i| {
+                let t = state.allowed_torque(i, forces.torque[i], mode);
+                t.map(|x| x / self.levers[i])
+            }));
         }
-        let levers = std::mem::take(&mut self.levers);
-        let lever = |i: usize| levers[i];
+        let (levers, torques) = (
+            std::mem::take(&mut self.levers),
+            std::mem::take(&mut self.torques),
+        );
+        let (lever, torque) = (|i: usize| levers[i], |i: usize| torques[i]);
         let mut power = 0.0;
         for i in 0..n {
             power += dot(&forces.force[i], &self.velocity[i]);
             if rotate {
-                power += dot(&forces.torque[i], &self.spin[i]) / lever(i);
+                power += dot(&torque(i), &self.spin[i]);
             }
         }
         if power > 0.0 {
@@ -200,7 +214,7 @@ impl Fire {
             vv += dot(&self.velocity[i], &self.velocity[i]);
             ff += dot(&f, &f);
             if rotate {
-                let t = forces.torque[i].map(|x| x / lever(i));
+                let t = torque(i);
                 axpy(&mut self.spin[i], dt, &t);
                 vv += dot(&self.spin[i], &self.spin[i]);
                 ff += dot(&t, &t);
@@ -222,19 +236,23 @@ impl Fire {
             axpy(&mut state.centres[i], dt, v);
             if rotate {
                 let l = lever(i);
-                let t = forces.torque[i].map(|x| x / l);
                 let w = &mut self.spin[i];
                 *w = w.map(|x| keep * x);
-                axpy(w, mix, &t);
+                axpy(w, mix, &torque(i));
                 clamp_norm(w, limit);
                 let angle = w.map(|x| dt * x / l);
                 if angle.iter().any(|&a| a != 0.0) {
                     let q = rotate_by(state.quaternions[i], angle);
-                    state.set_orientation(i, q)?;
+                    if state.within_turn(i, q, max_turn) {
+                        state.set_orientation(i, q)?;
+                    } else {
+                        // At the limit: the grain stops turning that way.
+                        *w = [0.0; 3];
+                    }
                 }
             }
         }
-        self.levers = levers;
+        (self.levers, self.torques) = (levers, torques);
         Ok(())
     }
 }

@@ -19,6 +19,7 @@ fn grain(axes: [f64; 3], q: [f64; 4]) -> GrainSpec {
         diameter: 2.0 * axes.iter().product::<f64>().cbrt(),
         aspect_ratio: axes[0] / axes[1],
         tilt: None,
+        turn_axis: None,
     }
 }
 

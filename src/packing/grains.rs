@@ -17,6 +17,13 @@ pub struct PackedGrain {
     pub quaternion: [f64; 4],
 }
 
+/// The angle in radians of the rotation taking orientation `from` to `to` (unit
+/// quaternions): `2 acos |⟨from, to⟩|`, in `[0, π]`.
+pub fn turn_angle(from: [f64; 4], to: [f64; 4]) -> f64 {
+    let dot: f64 = from.iter().zip(&to).map(|(a, b)| a * b).sum();
+    2.0 * dot.abs().min(1.0).acos()
+}
+
 /// Why the packing loop stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum StopReason {

@@ -35,7 +35,7 @@ pub use fire::{
     ALPHA_DECAY, ALPHA_START, DT_GROW, DT_MAX, DT_MIN, DT_SHRINK, DT_START, MAX_MOVE, N_DELAY,
     STUCK_RATIO, WINDOW,
 };
-pub use grains::{PackedGrain, StopReason};
+pub use grains::{turn_angle, PackedGrain, StopReason};
 pub use neighbours::SKIN;
 pub use verify::{verify, Verification};
 
@@ -175,7 +175,8 @@ pub fn pack(
         neighbours: Default::default(),
         forces: Default::default(),
         counters: Counters::default(),
-        rotate: params.rotation,
+        rotation: params.rotation,
+        max_turn: params.max_turn,
         stop,
         progress,
     };

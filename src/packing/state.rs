@@ -1,9 +1,11 @@
 //! The grains as the loop sees them: shapes at target size, moving centres and (when
 //! the scene lets them rotate) orientations.
 
+use super::grains::turn_angle;
 use super::PackError;
+use crate::contact::dot;
 use crate::contact::{Ellipsoid, PreparedEllipsoid};
-use crate::io::scene::{Boundary, Domain, GrainSpec};
+use crate::io::scene::{Boundary, Domain, GrainSpec, Rotation};
 use crate::octree::{BoxShape, Sphere};
 
 /// Everything about the grains at scale 1 (target sizes), and their centres.
@@ -11,6 +13,10 @@ pub(crate) struct State {
     pub centres: Vec<[f64; 3]>,
     /// Orientations `[w, x, y, z]`; change only when the grains may rotate.
     pub quaternions: Vec<[f64; 4]>,
+    /// The orientations as drawn, which `max_turn` measures turns from.
+    pub drawn: Vec<[f64; 4]>,
+    /// The axis each grain may turn about under [`Rotation::Axis`].
+    pub turn_axes: Vec<Option<[f64; 3]>>,
     /// Target semi-axes.
     pub axes: Vec<[f64; 3]>,
     /// Whether each grain is a sphere (three equal semi-axes): no ellipsoid maths.
@@ -46,6 +52,8 @@ impl State {
         let mut state = Self {
             centres: vec![[0.0; 3]; n],
             quaternions: specs.iter().map(|s| s.quaternion).collect(),
+            drawn: specs.iter().map(|s| s.quaternion).collect(),
+            turn_axes: specs.iter().map(|s| s.turn_axis).collect(),
             axes: specs.iter().map(|s| s.semi_axes).collect(),
             round: specs
                 .iter()
@@ -90,6 +98,24 @@ impl State {
         self.shapes[id] = shape;
         self.half_widths[id] = widths;
         Ok(())
+    }
+
+    /// The part of torque `t` grain `i` may follow under `mode`.
+    pub fn allowed_torque(&self, i: usize, t: [f64; 3], mode: Rotation) -> [f64; 3] {
+        match (mode, self.turn_axes[i]) {
+            (Rotation::Free, _) => t,
+            (Rotation::Axis, Some(a)) => {
+                let along = dot(&a, &t);
+                a.map(|x| along * x)
+            }
+            _ => [0.0; 3],
+        }
+    }
+
+    /// Whether orientation `q` of grain `i` is within `max_turn` radians of its drawn
+    /// one.
+    pub fn within_turn(&self, i: usize, q: [f64; 4], max_turn: f64) -> bool {
+        max_turn >= std::f64::consts::PI || turn_angle(self.drawn[i], q) <= max_turn
     }
 
     pub fn len(&self) -> usize {

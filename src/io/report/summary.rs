@@ -7,7 +7,7 @@ use super::stats::{
 };
 use crate::io::scene::GrainSpec;
 use crate::io::scene::{Boundary, Distribution, GrainCount, Orientation, Phase, Scene};
-use crate::packing::{PackedGrain, Packing};
+use crate::packing::{turn_angle, PackedGrain, Packing};
 use serde::Serialize;
 use std::f64::consts::PI;
 use std::time::Duration;
@@ -70,11 +70,27 @@ pub struct Summary {
     pub timings: TimingSummary,
     /// What the loop did.
     pub counters: CounterSummary,
+    /// Whether and how far grains turned from their drawn orientations.
+    pub rotation: RotationSummary,
     /// Per phase, in scene order.
     pub phases: Vec<PhaseSummary>,
     /// The voxel RVE, when one was written (set by the writer).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rve: Option<super::RveSummary>,
+}
+
+/// `packing.rotation` and `packing.max_turn` as the loop ran them, and the turns of the
+/// written grains from their drawn orientations.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct RotationSummary {
+    /// `"none"`, `"free"` or `"axis"`.
+    pub mode: &'static str,
+    /// The limit on any grain's turn, in degrees (180: none).
+    pub max_turn_deg: f64,
+    /// Median turn over the grains, in degrees (0 when grains do not turn).
+    pub median_turn_deg: f64,
+    /// Largest turn, in degrees.
+    pub largest_turn_deg: f64,
 }
 
 /// Seconds spent: the loop's stages, the loop as a whole, and the run.
@@ -191,6 +207,18 @@ impl Summary {
                 }
             })
             .collect();
+        let mut turns: Vec<f64> = packing
+            .grains
+            .iter()
+            .map(|g| turn_angle(specs[g.id as usize].quaternion, g.quaternion).to_degrees())
+            .collect();
+        turns.sort_by(f64::total_cmp);
+        let rotation = RotationSummary {
+            mode: scene.packing.rotation.name(),
+            max_turn_deg: scene.packing.max_turn.to_degrees(),
+            median_turn_deg: turns.get(turns.len() / 2).copied().unwrap_or(0.0),
+            largest_turn_deg: turns.last().copied().unwrap_or(0.0),
+        };
         Self {
             version: env!("CARGO_PKG_VERSION"),
             seed: scene.seed,
@@ -221,6 +249,7 @@ impl Summary {
                 outputs: 0.0,
                 total: run.total.as_secs_f64(),
             },
+            rotation,
             counters: CounterSummary {
                 steps: c.steps,
                 fire_steps: c.fire_steps,

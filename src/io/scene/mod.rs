@@ -168,10 +168,12 @@ pub struct PackingParams {
     /// overlap-free one and the smallest jammed one until they are this close
     /// (relative). In `(0, 0.1]`; default 10⁻³ (0.3 % of packing fraction).
     pub jam_resolution: f64,
-    /// Whether grains may rotate while packing. Default false: orientations stay as
-    /// drawn, as the scene's statistics ask; true packs denser but the orientations
-    /// written are where the grains turned to.
-    pub rotation: bool,
+    /// Whether and how grains may turn while packing. Default [`Rotation::None`]:
+    /// orientations stay as drawn, as the scene's statistics ask.
+    pub rotation: Rotation,
+    /// The most a grain may turn away from its drawn orientation, in radians, in
+    /// `(0, π]`. Default π: no limit.
+    pub max_turn: f64,
 }
 
 impl Default for PackingParams {
@@ -179,7 +181,34 @@ impl Default for PackingParams {
         Self {
             max_steps: 100_000,
             jam_resolution: 1e-3,
-            rotation: false,
+            rotation: Rotation::None,
+            max_turn: std::f64::consts::PI,
+        }
+    }
+}
+
+/// How grains may turn while packing (`packing.rotation`). Turning lets a jammed
+/// packing grow denser, at the price of orientations that are no longer the drawn ones:
+/// the summary reports how far grains turned.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rotation {
+    /// Orientations stay as drawn (`false`).
+    None,
+    /// Grains turn freely (`true`).
+    Free,
+    /// Grains of a tilt phase turn only about its tilt axis, so that their first axis
+    /// stays in the plane the scene puts it in; other grains keep their orientation
+    /// (`"axis"`).
+    Axis,
+}
+
+impl Rotation {
+    /// The value as `summary.json` names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Free => "free",
+            Self::Axis => "axis",
         }
     }
 }

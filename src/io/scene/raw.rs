@@ -129,7 +129,9 @@ pub(crate) enum RawKind {
 pub(crate) struct RawPacking {
     pub max_steps: Opt<u64>,
     pub jam_resolution: Opt<f64>,
-    pub rotation: Opt<bool>,
+    /// `true`, `false` or `"axis"`: checked by validation.
+    pub rotation: Opt<toml::Value>,
+    pub max_turn: Opt<f64>,
 }
 
 /// `[output]`.

@@ -1,7 +1,7 @@
 //! Drawing grains from a scene: which phase, what size, what shape, which way round.
 
 use super::error::SampleError;
-use super::{GrainCount, Phase, Scene, MAX_GRAINS};
+use super::{GrainCount, Orientation, Phase, Scene, MAX_GRAINS};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
@@ -27,6 +27,11 @@ pub struct GrainSpec {
     pub aspect_ratio: f64,
     /// Tilt angle `θ` in radians, for phases with a tilt orientation.
     pub tilt: Option<f64>,
+    /// The unit axis the grain may turn about under [`Rotation::Axis`]: its phase's
+    /// tilt axis; `None` (it keeps its orientation) for other phases.
+    ///
+    /// [`Rotation::Axis`]: super::Rotation::Axis
+    pub turn_axis: Option<[f64; 3]>,
 }
 
 impl GrainSpec {
@@ -46,6 +51,7 @@ impl GrainSpec {
             diameter,
             aspect_ratio,
             tilt,
+            turn_axis: None,
         }
     }
 
@@ -81,7 +87,14 @@ impl Phase {
             .orientation
             .sample(rng)
             .ok_or_else(|| rejected("tilt angle"))?;
-        Ok(GrainSpec::new(index, d, alpha, q, tilt))
+        let turn_axis = match &self.orientation {
+            Orientation::Tilt { axis, .. } => Some(axis.unit()),
+            _ => None,
+        };
+        Ok(GrainSpec {
+            turn_axis,
+            ..GrainSpec::new(index, d, alpha, q, tilt)
+        })
     }
 }
 

@@ -9,8 +9,8 @@ use super::error::{SceneError, Source};
 use super::orientation::Orientation;
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use super::{
-    mean_grain_volume, Boundary, Domain, GrainCount, PackingParams, Phase, Scene, MAX_GRAINS,
-    MAX_TARGET_FRACTION,
+    mean_grain_volume, Boundary, Domain, GrainCount, PackingParams, Phase, Rotation, Scene,
+    MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -213,7 +213,25 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
         params.jam_resolution = *v.get_ref();
     }
     if let Some(v) = &raw.rotation {
-        params.rotation = *v.get_ref();
+        params.rotation = match v.get_ref() {
+            toml::Value::Boolean(false) => Rotation::None,
+            toml::Value::Boolean(true) => Rotation::Free,
+            toml::Value::String(s) if s == "axis" => Rotation::Axis,
+            _ => {
+                return Err(src.invalid_at(
+                    "packing.rotation",
+                    v,
+                    "must be false (orientations as drawn), true (grains turn freely) or \"axis\" (grains of tilt phases turn about the tilt axis)",
+                ))
+            }
+        };
+    }
+    if let Some(v) = &raw.max_turn {
+        let turn = *v.get_ref();
+        if !(turn > 0.0 && turn <= 180.0) {
+            return Err(src.invalid_at("packing.max_turn", v, "must lie in (0, 180] degrees"));
+        }
+        params.max_turn = turn.to_radians();
     }
     Ok(params)
 }
