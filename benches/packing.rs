@@ -9,7 +9,7 @@
 mod common;
 
 use grainpack::io::scene::{GrainCount, Rotation, Scene};
-use grainpack::packing::turn_angle;
+use grainpack::packing::sorted_turns;
 use std::fmt::Write as _;
 
 /// The scaling runs kanapy's grains at this packing fraction (the 10⁵ goal).
@@ -56,12 +56,7 @@ fn main() {
             scene.packing.max_turn = f64::to_radians(max_turn);
         }
         let (p, specs, secs) = common::pack_scene(&scene);
-        let mut turns: Vec<f64> = p
-            .grains
-            .iter()
-            .map(|g| turn_angle(specs[g.id as usize].quaternion, g.quaternion).to_degrees())
-            .collect();
-        turns.sort_by(f64::total_cmp);
+        let turns = sorted_turns(&specs, &p.grains);
         writeln!(
             report,
             "| {path} | {} | {:.0} | {} | {secs:.2} | {:.4} | {:.4} | {} | {:.1} / {:.1} | {} | {} | {} | {} | {:.6} | {:.2} / {:.2} / {:.2} |",
@@ -71,8 +66,8 @@ fn main() {
             p.fraction,
             scene.expected_fraction(),
             p.stop,
-            turns[turns.len() / 2],
-            turns[turns.len() - 1],
+            turns[turns.len() / 2].to_degrees(),
+            turns[turns.len() - 1].to_degrees(),
             p.counters.steps,
             p.counters.fire_steps,
             p.counters.pairs_tested,

@@ -340,7 +340,10 @@ fn check_written_packing(out: &Path, periodic: bool) -> (Vec<Grain>, Value) {
     );
     assert!(median >= 0.0 && median <= largest, "{rotation}");
     // The limit holds up to the rounding of acos near 1 (1e-7 rad).
-    assert!(largest <= number(&rotation["max_turn_deg"]) + 1e-5, "{rotation}");
+    assert!(
+        largest <= number(&rotation["max_turn_deg"]) + 1e-5,
+        "{rotation}"
+    );
     if rotation["mode"] == "none" {
         assert_eq!(largest, 0.0, "{rotation}");
     }

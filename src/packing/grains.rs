@@ -1,5 +1,6 @@
 //! The packed state as it is written out.
 
+use crate::io::scene::GrainSpec;
 use std::fmt;
 
 /// One packed grain.
@@ -22,6 +23,17 @@ pub struct PackedGrain {
 pub fn turn_angle(from: [f64; 4], to: [f64; 4]) -> f64 {
     let dot: f64 = from.iter().zip(&to).map(|(a, b)| a * b).sum();
     2.0 * dot.abs().min(1.0).acos()
+}
+
+/// How far each packed grain turned from its drawn orientation (`drawn[id]`), in
+/// radians, in increasing order.
+pub fn sorted_turns(drawn: &[GrainSpec], grains: &[PackedGrain]) -> Vec<f64> {
+    let mut turns: Vec<f64> = grains
+        .iter()
+        .map(|g| turn_angle(drawn[g.id as usize].quaternion, g.quaternion))
+        .collect();
+    turns.sort_by(f64::total_cmp);
+    turns
 }
 
 /// Why the packing loop stopped.

@@ -35,7 +35,7 @@ pub use fire::{
     ALPHA_DECAY, ALPHA_START, DT_GROW, DT_MAX, DT_MIN, DT_SHRINK, DT_START, MAX_MOVE, N_DELAY,
     STUCK_RATIO, WINDOW,
 };
-pub use grains::{turn_angle, PackedGrain, StopReason};
+pub use grains::{sorted_turns, turn_angle, PackedGrain, StopReason};
 pub use neighbours::SKIN;
 pub use verify::{verify, Verification};
 

@@ -244,7 +244,7 @@ impl VonMisesCdf {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::scene::Distribution;
+    use crate::io::scene::{sample_laws, Distribution};
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
 
@@ -258,22 +258,7 @@ mod tests {
     #[test]
     fn ks_distance_of_a_sample_from_its_own_law_is_small() {
         let n = 5000;
-        let laws = [
-            Distribution::LogNormal {
-                sigma: 0.8,
-                scale: 14.0,
-                loc: 0.0,
-                min: 6.0,
-                max: 16.0,
-            },
-            Distribution::Normal {
-                mean: 7.0,
-                std: 1.5,
-                min: 4.0,
-                max: 10.0,
-            },
-            Distribution::Uniform { min: 1.0, max: 1.5 },
-        ];
+        let laws = sample_laws();
         for (seed, law) in laws.iter().enumerate() {
             let d = ks_distance(&draw(law, n, seed as u64), |x| law.cdf(x)).unwrap();
             assert!(d < 1.63 / (n as f64).sqrt(), "{law:?}: D = {d}");

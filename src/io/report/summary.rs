@@ -7,7 +7,7 @@ use super::stats::{
 };
 use crate::io::scene::GrainSpec;
 use crate::io::scene::{Boundary, Distribution, GrainCount, Orientation, Phase, Scene};
-use crate::packing::{turn_angle, PackedGrain, Packing};
+use crate::packing::{sorted_turns, PackedGrain, Packing};
 use serde::Serialize;
 use std::f64::consts::PI;
 use std::time::Duration;
@@ -207,17 +207,12 @@ impl Summary {
                 }
             })
             .collect();
-        let mut turns: Vec<f64> = packing
-            .grains
-            .iter()
-            .map(|g| turn_angle(specs[g.id as usize].quaternion, g.quaternion).to_degrees())
-            .collect();
-        turns.sort_by(f64::total_cmp);
+        let turns = sorted_turns(specs, &packing.grains);
         let rotation = RotationSummary {
             mode: scene.packing.rotation.name(),
             max_turn_deg: scene.packing.max_turn.to_degrees(),
-            median_turn_deg: turns.get(turns.len() / 2).copied().unwrap_or(0.0),
-            largest_turn_deg: turns.last().copied().unwrap_or(0.0),
+            median_turn_deg: turns.get(turns.len() / 2).map_or(0.0, |t| t.to_degrees()),
+            largest_turn_deg: turns.last().map_or(0.0, |t| t.to_degrees()),
         };
         Self {
             version: env!("CARGO_PKG_VERSION"),

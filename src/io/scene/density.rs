@@ -73,7 +73,7 @@ impl VonMises {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::scene::distribution::sample_laws;
+    use crate::io::scene::sample_laws;
     use crate::io::scene::special::simpson;
     use std::f64::consts::PI;
 

@@ -33,6 +33,8 @@ mod special;
 mod validate;
 mod von_mises;
 
+#[cfg(test)]
+pub(crate) use distribution::sample_laws;
 pub use distribution::Distribution;
 pub use error::{SampleError, SceneError, TOP_LEVEL};
 pub use orientation::{rotation_column, Axis, Orientation};
