@@ -199,17 +199,26 @@ fn number(v: &Value) -> f64 {
 /// Everything a written packing must satisfy, checked from the files alone. Returns
 /// the grains and the summary for further checks.
 fn check_written_packing(out: &Path, periodic: bool) -> (Vec<Grain>, Value) {
-    assert_eq!(
-        files_in(out),
-        [
-            "centers.vtp",
-            "grains.csv",
-            "grains.vtu",
-            "statistics.png",
-            "summary.json"
-        ],
-        "stray files"
-    );
+    // What every scene here writes, and what a scene may add; nothing else (no
+    // temporary files left behind).
+    let files = files_in(out);
+    let always = [
+        "centers.vtp",
+        "grains.csv",
+        "grains.vtu",
+        "statistics.png",
+        "summary.json",
+    ];
+    let optional = ["rve.vti", "rve_grains.csv", "sections.png"];
+    for f in always {
+        assert!(files.iter().any(|g| g == f), "{f} missing: {files:?}");
+    }
+    for f in &files {
+        assert!(
+            always.contains(&f.as_str()) || optional.contains(&f.as_str()),
+            "stray file {f}"
+        );
+    }
     let grains = read_grains(&out.join("grains.csv"));
     let summary = read_summary(&out.join("summary.json"));
     let size: Vec<f64> = summary["box"]
@@ -339,9 +348,9 @@ fn check_written_packing(out: &Path, periodic: bool) -> (Vec<Grain>, Value) {
         number(&rotation["largest_turn_deg"]),
     );
     assert!(median >= 0.0 && median <= largest, "{rotation}");
-    // The limit holds up to the rounding of acos near 1 (1e-7 rad).
+    // The limit holds up to rounding.
     assert!(
-        largest <= number(&rotation["max_turn_deg"]) + 1e-5,
+        largest <= number(&rotation["max_turn_deg"]) * (1.0 + 1e-12),
         "{rotation}"
     );
     if rotation["mode"] == "none" {
@@ -560,29 +569,34 @@ fn ctrl_c_writes_the_last_overlap_free_state_and_exits_3() {
     assert_eq!(summary["stop_reason"], "interrupted");
 }
 
-/// The shipped example scenes, checked like the small ones (slow: run with
-/// `cargo test --release -- --ignored`). The README's main job must reach its target;
-/// kanapy's scene must at least be overlap-free, whatever the loop reached.
+/// The shipped example scenes, checked like the small ones (about 2 s): both reach
+/// their targets, and what they write
+/// follows the requested laws as closely as a sample of that many grains can (every
+/// Kolmogorov–Smirnov distance below `1.63/√n`, which a true sample exceeds with
+/// probability 0.01), kanapy's tilt angles included although its grains may turn.
 #[test]
-#[ignore]
-fn the_shipped_scenes_pack_overlap_free() {
-    for (name, want) in [("grains", &[0][..]), ("kanapy_elongated", &[0, 3][..])] {
+fn the_shipped_scenes_reach_their_targets_with_the_requested_statistics() {
+    for name in ["grains", "kanapy_elongated"] {
         let dir = scratch(&format!("shipped-{name}"));
         let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("configs/{name}.toml"));
         let run = pack_in(&dir, &[scene.to_str().unwrap(), "--out", "out", "--quiet"]);
-        let code = run.status.code().unwrap();
-        assert!(
-            want.contains(&code),
-            "{name}: exit {code}: {}",
-            stderr(&run)
-        );
+        assert_eq!(run.status.code(), Some(0), "{name}: {}", stderr(&run));
         let (_, summary) = check_written_packing(&dir.join("out"), true);
+        assert_eq!(summary["stop_reason"], "target_reached", "{name}");
+        for phase in summary["phases"].as_array().unwrap() {
+            let critical = 1.63 / number(&phase["grains"]).sqrt();
+            for law in ["diameter", "aspect_ratio", "tilt_angle_deg"] {
+                if let Some(d) = phase[law]["ks_distance"].as_f64() {
+                    assert!(d < critical, "{name} {}: {law} KS {d}", phase["name"]);
+                }
+            }
+        }
         eprintln!(
-            "{name}: {} grains at {:.4}, {}, {:.2} s in the loop",
+            "{name}: {} grains at {:.4}, {:.2} s in the loop, median turn {:.1}°",
             summary["grains"],
             number(&summary["packing_fraction"]),
-            summary["stop_reason"],
             number(&summary["timings"]["packing"]),
+            number(&summary["rotation"]["median_turn_deg"]),
         );
     }
 }

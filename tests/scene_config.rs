@@ -115,6 +115,9 @@ fn kanapy_config_expresses_kanapys_packed_grains() {
     assert_eq!(axis, Axis::Z);
     assert_eq!((angle.kappa, angle.min), (1.0, 0.0));
     assert!((angle.mean - 0.5 * PI).abs() < 1e-15 && (angle.max - PI).abs() < 1e-15);
+    // Its grains turn in their tilt plane, and back as far as they can.
+    assert_eq!(scene.packing.rotation, Rotation::Axis);
+    assert!(scene.packing.restore);
     // kanapy packs about 1050 grains of this scene.
     let n = scene.expected_count();
     assert!((950.0..1100.0).contains(&n), "{n}");

@@ -22,8 +22,10 @@ SEEDS = [2024, 1, 2, 3]
 # (label, lines added to the scene's [packing] table)
 MODES = [
     ("fixed", []),
-    ("axis, max_turn 20°", ['rotation = "axis"', "max_turn = 20"]),
+    ("axis, restore = false", ['rotation = "axis"', "restore = false"]),
+    ("axis, max_turn = 20", ['rotation = "axis"', "max_turn = 20"]),
     ("axis", ['rotation = "axis"']),
+    ("free, restore = false", ["rotation = true", "restore = false"]),
     ("free", ["rotation = true"]),
 ]
 

@@ -41,6 +41,24 @@ impl PreparedEllipsoid {
         })
     }
 
+    /// [`PreparedEllipsoid::new`] for an ellipsoid that [`Ellipsoid::new`] built from
+    /// `semi_axes`: their extremes are taken as the bounding and inscribed radii, with
+    /// no eigen-decomposition (they differ from the eigenvalues of the rounded `Q` by a
+    /// few `ε · cond` relative), for shapes that turn at every step.
+    pub fn with_semi_axes(e: &Ellipsoid, semi_axes: [f64; 3]) -> Result<Self, ShapeError> {
+        let ldl = Ldl::factor(&e.q)
+            .map_err(|(pivot, value)| ShapeError::NotPositiveDefinite { pivot, value })?;
+        let [a, b, c] = semi_axes;
+        Ok(Self {
+            q: e.q,
+            ldl,
+            bounding_radius: a.max(b).max(c),
+            inscribed_radius: a.min(b).min(c),
+            condition: condition_bound(&e.q, &ldl),
+            unscaled: diagonal_in_safe_range(&e.q),
+        })
+    }
+
     /// The same shape scaled by `factor` about its centre (`Q → factor² Q`).
     ///
     /// Exact up to one rounding per stored number; the condition number is unchanged.

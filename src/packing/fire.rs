@@ -76,6 +76,10 @@ pub(crate) struct Fire {
     dt: f64,
     alpha: f64,
     positive: u32,
+    /// Stiffness of a pull of every grain back toward its drawn orientation: energy
+    /// `restore · L² |θ|² / 2`, `L` its lever and θ its turn (rotation vector); 0 for
+    /// none. While it is set, a clean state does not end a relaxation.
+    pub restore: f64,
 }
 
 impl Fire {
@@ -121,7 +125,15 @@ impl Fire {
             counters.narrow_phase += t2 - t1;
             counters.pairs_tested += forces.tested;
             counters.fire_steps += 1;
-            if forces.min_mu1 >= s * (1.0 + CONTACT_GAP) && self.inside(state, forces, s) {
+            let mut energy = forces.energy;
+            if self.restore > 0.0 {
+                energy += (0..n)
+                    .map(|i| {
+                        let (l, t) = (big_s * state.shapes[i].bounding_radius(), state.turn(i));
+                        0.5 * self.restore * l * l * dot(&t, &t)
+                    })
+                    .sum::<f64>();
+            } else if forces.min_mu1 >= s * (1.0 + CONTACT_GAP) && self.inside(state, forces, s) {
                 counters.response += t2.elapsed();
                 return Ok(Outcome::Clean);
             }
@@ -131,7 +143,7 @@ impl Fire {
                 fraction: state.fraction(s),
                 overlaps: forces.overlaps,
             });
-            window_min = window_min.min(forces.energy);
+            window_min = window_min.min(energy);
             if (step + 1) % WINDOW == 0 {
                 if window_min > STUCK_RATIO * previous_min {
                     counters.response += t2.elapsed();
@@ -168,9 +180,15 @@ impl Fire {
         if rotate {
             self.levers
                 .extend(state.shapes.iter().map(|e| big_s * e.bounding_radius()));
+            let kappa = self.restore;
             self.torques.extend((0..n).map(|i| {
-                let t = state.allowed_torque(i, forces.torque[i], mode);
-                t.map(|x| x / self.levers[i])
+                let l = self.levers[i];
+                let mut t = forces.torque[i];
+                if kappa > 0.0 {
+                    let turn = state.turn(i);
+                    axpy(&mut t, -kappa * l * l, &turn);
+                }
+                state.allowed_torque(i, t, mode).map(|x| x / l)
             }));
         }
         let (levers, torques) = (

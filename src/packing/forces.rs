@@ -13,6 +13,7 @@
 //! A grain crossing a wall of a walled box has energy `δ²` per wall, δ its
 //! penetration.
 
+use super::grains::turn_angle;
 use super::neighbours::relative;
 use super::state::State;
 use crate::contact::{contact_geometry_fast, dot, ContactGeometry, PreparedEllipsoid};
@@ -42,25 +43,36 @@ pub(crate) struct Forces {
     /// The overlapping pairs (index into the pair list) and what they contribute, in
     /// pair order.
     hits: Vec<(usize, PairForce)>,
-    /// Per candidate pair: a lower bound on μ₁ and the pair's travel when it was
-    /// taken; valid until the list is rebuilt.
-    bounds: Vec<(f64, f64)>,
+    /// Per candidate pair: a lower bound on μ₁, and the pair's travel and sweep when
+    /// it was taken; valid until the list is rebuilt.
+    bounds: Vec<(f64, f64, f64)>,
     /// Distance each grain has moved since the list was built, summed step by step,
     /// and where it was at the last evaluation.
     travel: Vec<f64>,
     last: Vec<[f64; 3]>,
+    /// For turning grains: how far any point of each grain (at target size) has been
+    /// swept by its turns since the list was built (angle × largest semi-axis, summed),
+    /// and its orientation at the last evaluation.
+    sweep: Vec<f64>,
+    last_turn: Vec<[f64; 4]>,
     /// The list build the bounds refer to.
     build: u64,
 }
 
-/// μ₁ is the gauge function of the Minkowski sum `E_i ⊕ (−E_j)`, which contains the
-/// ball of radius `ρ_i + ρ_j` (smallest semi-axes): it is Lipschitz in `r` with
-/// constant `1/(ρ_i + ρ_j)`. So a pair whose μ₁ was `m` when the two grains had
-/// travelled `t` in total is still at `μ₁ ≥ m − (t' − t)/(ρ_i + ρ_j)` after travelling
-/// `t'` — valid while orientations are fixed. A pair is skipped while that bound
-/// exceeds `S (1 + BOUND_SLACK)`; the slack covers the fast contact function's error
-/// (≤ 1e-8 relative even on the extreme reference set) with room to spare.
+/// μ₁ is the gauge function of the Minkowski sum `K = E_i ⊕ (−E_j)`, which contains
+/// the ball of radius `ρ = ρ_i + ρ_j` (smallest semi-axes): it is Lipschitz in `r`
+/// with constant `1/ρ`. So a pair whose μ₁ was `m` when the two grains had travelled
+/// `t` in total is still at `μ₁ ≥ m − (t' − t)/ρ` after travelling `t'`. Turning grains
+/// change `K` itself: turns that sweep no point of either grain further than `h` in
+/// total keep `K` inside `K ⊕ B(h) ⊆ (1 + h/ρ) K`, which divides the bound by
+/// `1 + h/ρ`. A pair is skipped while that bound exceeds `S (1 + BOUND_SLACK)`; the
+/// slack covers the fast contact function's error (≤ 1e-8 relative even on the extreme
+/// reference set) with room to spare.
 pub const BOUND_SLACK: f64 = 1e-6;
+
+/// Added to every turn angle in the sweep of [`BOUND_SLACK`]'s bound, for the rounding
+/// of [`turn_angle`] (a few ε).
+const TURN_ROUNDING: f64 = 16.0 * f64::EPSILON;
 
 /// What one overlapping pair contributes.
 #[derive(Clone, Copy)]
@@ -75,9 +87,8 @@ struct PairForce {
 
 impl Forces {
     /// Evaluates the state at scale `big_s` over the candidate pairs of list build
-    /// `build`. With `torques` (rotating grains) every pair is evaluated; otherwise
-    /// pairs whose μ₁ is bounded above `big_s` since their last evaluation are skipped
-    /// (see [`BOUND_SLACK`]).
+    /// `build`, with `torques` when grains turn. Pairs whose μ₁ is bounded above
+    /// `big_s` since their last evaluation are skipped (see [`BOUND_SLACK`]).
     pub fn evaluate(
         &mut self,
         state: &State,
@@ -92,13 +103,16 @@ impl Forces {
         self.torque.clear();
         self.torque.resize(n, [0.0; 3]);
         self.hits.clear();
-        if torques || build != self.build || self.bounds.len() != pairs.len() {
+        if build != self.build || self.bounds.len() != pairs.len() {
             self.build = build;
             self.bounds.clear();
-            self.bounds.resize(pairs.len(), (0.0, 0.0));
+            self.bounds.resize(pairs.len(), (0.0, 0.0, 0.0));
             self.travel.clear();
             self.travel.resize(n, 0.0);
             self.last.clone_from(&state.centres);
+            self.sweep.clear();
+            self.sweep.resize(n, 0.0);
+            self.last_turn.clone_from(&state.quaternions);
         } else {
             for ((t, a), b) in self
                 .travel
@@ -110,8 +124,23 @@ impl Forces {
                     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
                 *a = *b;
             }
+            if torques {
+                for (((h, a), b), e) in self
+                    .sweep
+                    .iter_mut()
+                    .zip(&mut self.last_turn)
+                    .zip(&state.quaternions)
+                    .zip(&state.shapes)
+                {
+                    if a != b {
+                        *h += (turn_angle(*a, *b) + TURN_ROUNDING) * e.bounding_radius();
+                        *a = *b;
+                    }
+                }
+            }
         }
         let (centres, shapes, travel) = (&state.centres, &state.shapes, &self.travel);
+        let sweep = &self.sweep;
         let (round, axes) = (&state.round, &state.axes);
         let skip_above = big_s * (1.0 + BOUND_SLACK);
         let tested = AtomicU64::new(0);
@@ -123,9 +152,10 @@ impl Forces {
             .filter_map(|(index, (p, bound))| {
                 let (i, j) = (p.i as usize, p.j as usize);
                 let (ei, ej) = (&shapes[i], &shapes[j]);
-                let moved = travel[i] + travel[j];
+                let (moved, swept) = (travel[i] + travel[j], sweep[i] + sweep[j]);
                 let inner = ei.inscribed_radius() + ej.inscribed_radius();
-                if bound.0 - (moved - bound.1) / inner >= skip_above {
+                let shifted = bound.0 - (moved - bound.1) / inner;
+                if shifted >= skip_above * (1.0 + (swept - bound.2) / inner) {
                     return None;
                 }
                 tested.fetch_add(1, Ordering::Relaxed);
@@ -135,12 +165,12 @@ impl Forces {
                 let outer = ei.bounding_radius() + ej.bounding_radius();
                 let far = dot(&r, &r).sqrt() / outer;
                 if far >= skip_above {
-                    *bound = (far, moved);
+                    *bound = (far, moved, swept);
                     return None;
                 }
                 let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
                 let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
-                *bound = (mu1, moved);
+                *bound = (mu1, moved, swept);
                 force.map(|f| (index, f))
             });
         // Collected in pair order whatever the threads (rayon keeps the order).

@@ -1,7 +1,7 @@
 //! The grains as the loop sees them: shapes at target size, moving centres and (when
 //! the scene lets them rotate) orientations.
 
-use super::grains::turn_angle;
+use super::grains::{turn_angle, turn_vector};
 use super::PackError;
 use crate::contact::dot;
 use crate::contact::{Ellipsoid, PreparedEllipsoid};
@@ -87,7 +87,7 @@ impl State {
             message: e.to_string(),
         };
         let e = Ellipsoid::new(self.axes[id], q).map_err(|e| bad(&e))?;
-        let shape = PreparedEllipsoid::new(&e).map_err(|e| bad(&e))?;
+        let shape = PreparedEllipsoid::with_semi_axes(&e, self.axes[id]).map_err(|e| bad(&e))?;
         Ok((shape, [e.q[0].sqrt(), e.q[3].sqrt(), e.q[5].sqrt()]))
     }
 
@@ -116,6 +116,12 @@ impl State {
     /// one.
     pub fn within_turn(&self, i: usize, q: [f64; 4], max_turn: f64) -> bool {
         max_turn >= std::f64::consts::PI || turn_angle(self.drawn[i], q) <= max_turn
+    }
+
+    /// The rotation vector taking grain `i` from its drawn orientation to its current
+    /// one.
+    pub fn turn(&self, i: usize) -> [f64; 3] {
+        turn_vector(self.drawn[i], self.quaternions[i])
     }
 
     pub fn len(&self) -> usize {

@@ -176,6 +176,9 @@ pub struct PackingParams {
     /// The most a grain may turn away from its drawn orientation, in radians, in
     /// `(0, π]`. Default π: no limit.
     pub max_turn: f64,
+    /// Whether grains that may turn are turned back toward their drawn orientations,
+    /// as far as their neighbours let them, once packed. Default true.
+    pub restore: bool,
 }
 
 impl Default for PackingParams {
@@ -185,6 +188,7 @@ impl Default for PackingParams {
             jam_resolution: 1e-3,
             rotation: Rotation::None,
             max_turn: std::f64::consts::PI,
+            restore: true,
         }
     }
 }

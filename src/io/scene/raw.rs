@@ -132,6 +132,7 @@ pub(crate) struct RawPacking {
     /// `true`, `false` or `"axis"`: checked by validation.
     pub rotation: Opt<toml::Value>,
     pub max_turn: Opt<f64>,
+    pub restore: Opt<bool>,
 }
 
 /// `[output]`.

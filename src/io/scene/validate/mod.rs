@@ -233,5 +233,8 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
         }
         params.max_turn = turn.to_radians();
     }
+    if let Some(v) = &raw.restore {
+        params.restore = *v.get_ref();
+    }
     Ok(params)
 }
