@@ -73,6 +73,8 @@ pub(crate) struct Fire {
     levers: Vec<f64>,
     /// The torques each grain may follow, over their levers.
     torques: Vec<[f64; 3]>,
+    /// The grains turned in a step, with their new orientations.
+    turned: Vec<(usize, [f64; 4])>,
     dt: f64,
     alpha: f64,
     positive: u32,
@@ -244,6 +246,8 @@ impl Fire {
             0.0
         };
         let keep = 1.0 - self.alpha;
+        let mut turned = std::mem::take(&mut self.turned);
+        turned.clear();
         for i in 0..n {
             let limit = MAX_MOVE * big_s * state.shapes[i].inscribed_radius() / dt;
             let f = forces.force[i];
@@ -262,7 +266,7 @@ impl Fire {
                 if angle.iter().any(|&a| a != 0.0) {
                     let q = rotate_by(state.quaternions[i], angle);
                     if state.within_turn(i, q, max_turn) {
-                        state.set_orientation(i, q)?;
+                        turned.push((i, q));
                     } else {
                         // At the limit: the grain stops turning that way.
                         *w = [0.0; 3];
@@ -270,8 +274,9 @@ impl Fire {
                 }
             }
         }
-        (self.levers, self.torques) = (levers, torques);
-        Ok(())
+        let done = state.set_orientations(&turned);
+        (self.levers, self.torques, self.turned) = (levers, torques, turned);
+        done
     }
 }
 

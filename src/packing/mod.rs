@@ -236,7 +236,9 @@ pub fn pack(
             Snapshot::of(&state, shrunk)
         }
     };
-    if params.restore && run.rotation != Rotation::None && reason != StopReason::Interrupted {
+    // A jammed state leaves no room to turn back: only a packing that reached its
+    // target is turned back.
+    if params.restore && run.rotation != Rotation::None && reason == StopReason::TargetReached {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if let Some(turned_back) = turn_back(&mut state, &mut fire, &mut run, &snapshot, left)? {
             snapshot = turned_back;

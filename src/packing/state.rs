@@ -7,6 +7,7 @@ use crate::contact::dot;
 use crate::contact::{Ellipsoid, PreparedEllipsoid};
 use crate::io::scene::{Boundary, Domain, GrainSpec, Rotation};
 use crate::octree::{BoxShape, Sphere};
+use rayon::prelude::*;
 
 /// Everything about the grains at scale 1 (target sizes), and their centres.
 pub(crate) struct State {
@@ -89,6 +90,22 @@ impl State {
         let e = Ellipsoid::new(self.axes[id], q).map_err(|e| bad(&e))?;
         let shape = PreparedEllipsoid::with_semi_axes(&e, self.axes[id]).map_err(|e| bad(&e))?;
         Ok((shape, [e.q[0].sqrt(), e.q[3].sqrt(), e.q[5].sqrt()]))
+    }
+
+    /// Turns each grain `id` of `turns` to its orientation `q` (unit quaternions), the
+    /// new shapes prepared in parallel.
+    pub fn set_orientations(&mut self, turns: &[(usize, [f64; 4])]) -> Result<(), PackError> {
+        let shapes = turns
+            .par_iter()
+            .with_min_len(64)
+            .map(|&(id, q)| self.shape_of(id, q))
+            .collect::<Result<Vec<_>, _>>()?;
+        for (&(id, q), (shape, widths)) in turns.iter().zip(shapes) {
+            self.quaternions[id] = q;
+            self.shapes[id] = shape;
+            self.half_widths[id] = widths;
+        }
+        Ok(())
     }
 
     /// Turns grain `id` to orientation `q` (a unit quaternion).

@@ -177,7 +177,7 @@ pub struct PackingParams {
     /// `(0, π]`. Default π: no limit.
     pub max_turn: f64,
     /// Whether grains that may turn are turned back toward their drawn orientations,
-    /// as far as their neighbours let them, once packed. Default true.
+    /// as far as their neighbours let them, once packed at the target. Default true.
     pub restore: bool,
 }
 
