@@ -9,7 +9,7 @@
 //! overlap (Donev et al., *J. Comput. Phys.* 202, 737, 2005):
 //! 1. grains start at random positions;
 //! 2. at a trial scale `s`, the overlap energy `Σ w (1 − μ)²` of all pairs with μ < 1
-//!    (at `s` inflated by [`MARGIN`]) is minimised with FIRE ([`fire`]): each step is
+//!    (at `s` inflated by [`MARGIN`]) is minimised with FIRE (`fire.rs`): each step is
 //!    **broad phase** (a Verlet list of candidate pairs from the octree), **narrow
 //!    phase** (the contact function of every candidate pair) and **response** (forces
 //!    and torques, a damped inertial move);
@@ -18,7 +18,11 @@
 //! 4. the scale moves: the first trial is the target itself (`s = 1`); after a stuck
 //!    relaxation the state shrunk by its smallest μ is a clean state at once, and the
 //!    scale is bisected between the best clean scale and the smallest stuck one until
-//!    they are within `jam_resolution` (relative; a scene parameter).
+//!    they are within `jam_resolution` (relative; a scene parameter);
+//! 5. grains that may turn and reached the target are turned back toward their drawn
+//!    orientations (`restore`, a scene parameter): [`RESTORE_STEPS`] steps with a pull
+//!    of stiffness [`RESTORE_STIFFNESS`] toward them, then a plain relaxation; the
+//!    result is kept if it is clean.
 //!
 //! The margin makes a relaxation finish as soon as the true overlaps are gone, long
 //! before the energy (taken at the inflated size) reaches zero. The result is checked
@@ -60,7 +64,7 @@ pub const STAGE_STEPS: u64 = 20_000;
 /// [`CONTACT_GAP`] margin after rounding.
 pub const SHRINK_MARGIN: f64 = 4.0 * CONTACT_GAP;
 /// Stiffness of the pull back toward the drawn orientations once grains that may turn
-/// are packed (see [`fire`]'s `restore`): strong enough to turn them back through
+/// are packed (`Fire::restore` in `fire.rs`): strong enough to turn them back through
 /// small overlaps (it is measured against the overlap energy of a pair, `(S(ρ_i +
 /// ρ_j))²(1 − μ)²`), after which a plain relaxation clears those overlaps. On kanapy's
 /// scene it halves the median turn (21° to 9–10°); 0.01–1 do about as well.
