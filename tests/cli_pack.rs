@@ -466,6 +466,38 @@ fn the_same_seed_gives_the_same_packing_whatever_the_thread_count() {
     let again = pack_and_check("threads-2-again", PERIODIC, true, &["--threads", "2"]);
     assert!(one == two, "--threads 1 and --threads 2 differ");
     assert!(two == again, "two runs with the same seed differ");
+    // Turning grains (and turning them back) too.
+    let turning = PERIODIC.replace("[box]", "[packing]\nrotation = \"axis\"\n\n[box]");
+    let one = pack_and_check("turning-1", &turning, true, &["--threads", "1"]);
+    let two = pack_and_check("turning-2", &turning, true, &["--threads", "2"]);
+    assert!(one == two, "turning: --threads 1 and --threads 2 differ");
+}
+
+/// Needles and platelets of 1:20 with sizes spread by 3:1, free to turn: overlap-free,
+/// at the target, nothing non-finite (the CSV parser would reject NaN).
+#[test]
+fn needles_and_platelets_of_one_to_twenty_pack_overlap_free() {
+    let scene = r#"
+seed = 21
+target_fraction = 0.1
+
+[packing]
+rotation = true
+
+[box]
+size = [60.0, 60.0, 60.0]
+
+[[phase]]
+name = "needles"
+size = { distribution = "uniform", min = 2.0, max = 6.0 }
+aspect_ratio = { distribution = "constant", value = 20.0 }
+
+[[phase]]
+name = "platelets"
+size = { distribution = "uniform", min = 2.0, max = 6.0 }
+aspect_ratio = { distribution = "constant", value = 0.05 }
+"#;
+    pack_and_check("needles", scene, true, &[]);
 }
 
 #[test]
