@@ -559,6 +559,16 @@ fn without_quiet_a_closing_line_names_the_files_written() {
         err.contains("target_reached") && err.contains("summary.json"),
         "{err}"
     );
+    assert!(!err.contains("turned"), "{err}");
+    // Grains that may turn: the closing lines say how far they did.
+    let turning = PERIODIC.replace("[box]", "[packing]\nrotation = true\n\n[box]");
+    write_scene(&dir, "turning.toml", &turning);
+    let run = pack_in(&dir, &["turning.toml", "--out", "t"]);
+    let err = stderr(&run);
+    assert!(
+        err.contains("turned from their drawn orientations by a median of"),
+        "{err}"
+    );
 }
 
 /// About 4000 grains filling 64 % of a periodic cube: seconds of work for the loop,

@@ -108,6 +108,14 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
             packing_time.as_secs_f64(),
             summary.checked_pairs,
         );
+        let r = &summary.rotation;
+        if r.mode != "none" {
+            eprintln!(
+                "pack: grains turned from their drawn orientations by a median of {:.1}° \
+                 (largest {:.1}°)",
+                r.median_turn_deg, r.largest_turn_deg
+            );
+        }
     }
     if packing.stop.is_success() {
         if !options.quiet {
