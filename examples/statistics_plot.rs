@@ -36,13 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let packed: Vec<PackedGrain> = specs
         .iter()
         .enumerate()
-        .map(|(i, s)| PackedGrain {
-            id: i as u32,
-            phase: s.phase,
-            centre: [0.0; 3],
-            semi_axes: s.semi_axes,
-            quaternion: s.quaternion,
-        })
+        .map(|(i, s)| PackedGrain::of_spec(i as u32, s, 1.0, [0.0; 3], s.quaternion))
         .collect();
     let voxel: Option<Vec<VoxelSample>> = demo.then(|| {
         packed

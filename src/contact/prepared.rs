@@ -28,17 +28,7 @@ pub struct PreparedEllipsoid {
 impl PreparedEllipsoid {
     /// Prepares an ellipsoid (validated by its constructor).
     pub fn new(e: &Ellipsoid) -> Result<Self, ShapeError> {
-        let ldl = Ldl::factor(&e.q)
-            .map_err(|(pivot, value)| ShapeError::NotPositiveDefinite { pivot, value })?;
-        let axes = e.semi_axes();
-        Ok(Self {
-            q: e.q,
-            ldl,
-            bounding_radius: axes[2],
-            inscribed_radius: axes[0],
-            condition: condition_bound(&e.q, &ldl),
-            unscaled: diagonal_in_safe_range(&e.q),
-        })
+        Self::with_semi_axes(e, e.semi_axes())
     }
 
     /// [`PreparedEllipsoid::new`] for an ellipsoid that [`Ellipsoid::new`] built from

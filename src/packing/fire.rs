@@ -82,6 +82,8 @@ pub(crate) struct Fire {
     /// `restore · L² |θ|² / 2`, `L` its lever and θ its turn (rotation vector); 0 for
     /// none. While it is set, a clean state does not end a relaxation.
     pub restore: f64,
+    /// Each grain's turn from its drawn orientation, while restoring.
+    turns: Vec<[f64; 3]>,
 }
 
 impl Fire {
@@ -129,10 +131,13 @@ impl Fire {
             counters.fire_steps += 1;
             let mut energy = forces.energy;
             if self.restore > 0.0 {
-                energy += (0..n)
-                    .map(|i| {
-                        let (l, t) = (big_s * state.shapes[i].bounding_radius(), state.turn(i));
-                        0.5 * self.restore * l * l * dot(&t, &t)
+                // Kept for the step's pull, which needs the same turns.
+                self.turns.clear();
+                self.turns.extend((0..n).map(|i| state.turn(i)));
+                energy += (self.turns.iter().zip(&state.shapes))
+                    .map(|(t, e)| {
+                        let l = big_s * e.bounding_radius();
+                        0.5 * self.restore * l * l * dot(t, t)
                     })
                     .sum::<f64>();
             } else if forces.min_mu1 >= s * (1.0 + CONTACT_GAP) && self.inside(state, forces, s) {
@@ -187,8 +192,7 @@ impl Fire {
                 let l = self.levers[i];
                 let mut t = forces.torque[i];
                 if kappa > 0.0 {
-                    let turn = state.turn(i);
-                    axpy(&mut t, -kappa * l * l, &turn);
+                    axpy(&mut t, -kappa * l * l, &self.turns[i]);
                 }
                 state.allowed_torque(i, t, mode).map(|x| x / l)
             }));

@@ -76,12 +76,12 @@ fn forces_and_torques_are_minus_the_gradient_of_the_energy() {
             let q = state.quaternions[g];
             let mut axis = [0.0; 3];
             axis[k] = FD_STEP;
-            state.set_orientation(g, rotate_by(q, axis)).unwrap();
+            state.set_orientations(&[(g, rotate_by(q, axis))]).unwrap();
             let up = energy(&state, big_s);
             axis[k] = -FD_STEP;
-            state.set_orientation(g, rotate_by(q, axis)).unwrap();
+            state.set_orientations(&[(g, rotate_by(q, axis))]).unwrap();
             let down = energy(&state, big_s);
-            state.set_orientation(g, q).unwrap();
+            state.set_orientations(&[(g, q)]).unwrap();
             let numeric = -(up - down) / (2.0 * FD_STEP);
             assert!(
                 (numeric - f.torque[g][k]).abs() <= FD_TOL * scale * 3.0,
@@ -129,12 +129,12 @@ fn wall_forces_and_torques_are_minus_the_gradient_of_the_energy() {
         let q = state.quaternions[0];
         let mut axis = [0.0; 3];
         axis[k] = FD_STEP;
-        state.set_orientation(0, rotate_by(q, axis)).unwrap();
+        state.set_orientations(&[(0, rotate_by(q, axis))]).unwrap();
         let up = wall_energy(&state);
         axis[k] = -FD_STEP;
-        state.set_orientation(0, rotate_by(q, axis)).unwrap();
+        state.set_orientations(&[(0, rotate_by(q, axis))]).unwrap();
         let down = wall_energy(&state);
-        state.set_orientation(0, q).unwrap();
+        state.set_orientations(&[(0, q)]).unwrap();
         let numeric = -(up - down) / (2.0 * FD_STEP);
         assert!(
             (numeric - f.torque[0][k]).abs() <= FD_TOL * scale * 3.0,

@@ -18,6 +18,26 @@ pub struct PackedGrain {
     pub quaternion: [f64; 4],
 }
 
+impl PackedGrain {
+    /// Grain `id` drawn as `spec`, its shape scaled by `scale`, at `centre` with
+    /// orientation `quaternion`.
+    pub fn of_spec(
+        id: u32,
+        spec: &GrainSpec,
+        scale: f64,
+        centre: [f64; 3],
+        quaternion: [f64; 4],
+    ) -> Self {
+        Self {
+            id,
+            phase: spec.phase,
+            centre,
+            semi_axes: spec.semi_axes.map(|a| a * scale),
+            quaternion,
+        }
+    }
+}
+
 /// The rotation vector (axis times angle, the angle in `[0, π]`) of the rotation taking
 /// orientation `from` to `to` (unit quaternions): from `r = to ⊗ from⁻¹`, the angle is
 /// `2 atan2(|r_xyz|, |r_w|)`, accurate to a few ε even for tiny turns (unlike `acos`

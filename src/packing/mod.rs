@@ -313,11 +313,11 @@ fn turn_back(
         return Ok(None);
     }
     state.centres.clone_from(&snapshot.centres);
-    for (i, q) in snapshot.quaternions.iter().enumerate() {
-        if state.quaternions[i] != *q {
-            state.set_orientation(i, *q)?;
-        }
-    }
+    let changed: Vec<(usize, [f64; 4])> = (snapshot.quaternions.iter().enumerate())
+        .filter(|&(i, q)| state.quaternions[i] != *q)
+        .map(|(i, q)| (i, *q))
+        .collect();
+    state.set_orientations(&changed)?;
     let s = snapshot.scale;
     fire.restore = RESTORE_STIFFNESS;
     run.counters.steps += 1;
@@ -370,13 +370,7 @@ fn finish(
         .zip(&snapshot.quaternions)
         .enumerate()
     {
-        grains[order[k]] = Some(PackedGrain {
-            id: order[k] as u32,
-            phase: spec.phase,
-            centre: *c,
-            semi_axes: spec.semi_axes.map(|a| a * scale),
-            quaternion: *q,
-        });
+        grains[order[k]] = Some(PackedGrain::of_spec(order[k] as u32, spec, scale, *c, *q));
     }
     let grains: Vec<PackedGrain> = grains.into_iter().flatten().collect();
     let verification = verify(&grains, &state.domain)?;

@@ -3,8 +3,7 @@
 
 use super::grains::{turn_angle, turn_vector};
 use super::PackError;
-use crate::contact::dot;
-use crate::contact::{Ellipsoid, PreparedEllipsoid};
+use crate::contact::{dot, Ellipsoid, PreparedEllipsoid};
 use crate::io::scene::{Boundary, Domain, GrainSpec, Rotation};
 use crate::octree::{BoxShape, Sphere};
 use rayon::prelude::*;
@@ -105,15 +104,6 @@ impl State {
             self.shapes[id] = shape;
             self.half_widths[id] = widths;
         }
-        Ok(())
-    }
-
-    /// Turns grain `id` to orientation `q` (a unit quaternion).
-    pub fn set_orientation(&mut self, id: usize, q: [f64; 4]) -> Result<(), PackError> {
-        let (shape, widths) = self.shape_of(id, q)?;
-        self.quaternions[id] = q;
-        self.shapes[id] = shape;
-        self.half_widths[id] = widths;
         Ok(())
     }
 

@@ -345,12 +345,8 @@ mod tests {
             grains: specs
                 .iter()
                 .enumerate()
-                .map(|(i, s)| PackedGrain {
-                    id: i as u32,
-                    phase: s.phase,
-                    centre: [i as f64 * 0.1; 3],
-                    semi_axes: s.semi_axes.map(|a| a * scale),
-                    quaternion: s.quaternion,
+                .map(|(i, s)| {
+                    PackedGrain::of_spec(i as u32, s, scale, [i as f64 * 0.1; 3], s.quaternion)
                 })
                 .collect(),
             scale,
