@@ -2,10 +2,13 @@
 //! reported with its file, key, line, column and value, and the grains drawn follow the
 //! requested statistics, deterministically for a seed.
 
+mod scene_support;
+
 use grainpack::io::scene::{
     rotation_column, Axis, Boundary, Distribution, GrainCount, GrainSpec, Orientation, OutputSpec,
     PackingParams, Rotation, Scene, SceneError, VonMises,
 };
+use scene_support::{assert_starts, scene_error as error};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -41,23 +44,6 @@ fn with_line(line: usize, text: &str) -> String {
 /// `BASE` with `text` appended.
 fn with_extra(text: &str) -> String {
     format!("{BASE}{text}\n")
-}
-
-/// The message of the error `text` must give.
-fn error(text: &str) -> String {
-    match Scene::from_str(text, "scene.toml") {
-        Ok(scene) => panic!("accepted:\n{text}\n{scene:?}"),
-        Err(e) => e.to_string(),
-    }
-}
-
-/// Asserts that `message` starts with `prefix`, showing both otherwise.
-#[track_caller]
-fn assert_starts(message: &str, prefix: &str) {
-    assert!(
-        message.starts_with(prefix),
-        "\n  got: {message}\n want: {prefix}…"
-    );
 }
 
 fn load(path: &str) -> Scene {

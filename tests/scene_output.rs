@@ -1,10 +1,13 @@
 //! The `[output]` table of a scene: defaults, typed values, the RVE's cells resolved
 //! against the box, and every bad value reported with its file, line, column and key.
 
+mod scene_support;
+
 use grainpack::io::scene::{
     OutputSpec, RveFill, RveSpec, Scene, VtkSpec, DEFAULT_RVE_CELLS, DEFAULT_VTK_RESOLUTION,
     MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
 };
+use scene_support::{assert_starts, scene_error};
 
 /// A valid scene in a 50 × 40 × 25 periodic box, 8 lines; `[output]` goes on line 9
 /// and its keys from line 10 on.
@@ -41,19 +44,7 @@ fn rve(keys: &str) -> RveSpec {
 
 /// The message of the error `[output]` with `keys` must give.
 fn error(keys: &str) -> String {
-    match Scene::from_str(&with_output(keys), "scene.toml") {
-        Ok(scene) => panic!("accepted:\n{keys}\n{:?}", scene.output),
-        Err(e) => e.to_string(),
-    }
-}
-
-/// Asserts that `message` starts with `prefix`, showing both otherwise.
-#[track_caller]
-fn assert_starts(message: &str, prefix: &str) {
-    assert!(
-        message.starts_with(prefix),
-        "\n  got: {message}\n want: {prefix}…"
-    );
+    scene_error(&with_output(keys))
 }
 
 #[test]
