@@ -17,7 +17,7 @@
 //! of [`Rational::halley`] in range.
 
 use super::scale::ldexp;
-use super::sym::{frobenius, quadratic_form, PencilParts};
+use super::sym::{frobenius, quadratic_form, Arith, PencilParts};
 use super::{Sym3, Vec3};
 
 /// Smallest `P = t s a b` (scaled coefficients) at which [`Rational::halley`] multiplies
@@ -30,32 +30,39 @@ pub(crate) const MIN_SCALED_PRODUCT: f64 = f64::from_bits((1023 - 200) << 52);
 /// with the coefficients of their derivatives (differences of neighbours, formed once).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Rational {
-    /// `a = A0 s² + A1 st + A2 t²`.
-    a: [f64; 3],
-    /// `b = B0 s³ + B1 s²t + B2 st² + B3 t³`.
-    b: [f64; 4],
-    /// `a′ = α0 s + α1 t` and the constant `a″`.
-    da: [f64; 2],
-    dda: f64,
-    /// `b′ = β0 s² + β1 st + β2 t²`, `b″ = γ0 s + γ1 t` and the constant `b‴`.
-    db: [f64; 3],
-    ddb: [f64; 2],
-    dddb: f64,
+    pub poly: Poly,
     /// `log2` of the scale taken out of the coefficients of `a`.
     a_exp: i32,
     /// `log2` of the scale taken out of the coefficients of `b`.
     b_exp: i32,
 }
 
+/// The scaled coefficients of [`Rational`] and their derivatives; generic so that
+/// eight pairs can be evaluated at once ([`super::lanes::F`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Poly<T = f64> {
+    /// `a = A0 s² + A1 st + A2 t²`.
+    pub a: [T; 3],
+    /// `b = B0 s³ + B1 s²t + B2 st² + B3 t³`.
+    pub b: [T; 4],
+    /// `a′ = α0 s + α1 t` and the constant `a″`.
+    pub da: [T; 2],
+    pub dda: T,
+    /// `b′ = β0 s² + β1 st + β2 t²`, `b″ = γ0 s + γ1 t` and the constant `b‴`.
+    pub db: [T; 3],
+    pub ddb: [T; 2],
+    pub dddb: T,
+}
+
 /// What a Halley step on `φ′` needs at one λ: `Dk = P^k φ^(k)` with `P = t s a b > 0`,
 /// so that the step `−2φ′φ″ / (2φ″² − φ′φ‴) = −2 D1 D2 P / (2 D2² − D1 D3)` costs one
 /// division, and the Newton gain `φ′² / (2|φ″|) = D1² / (2|D2|)`.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Halley {
-    pub d1: f64,
-    pub d2: f64,
-    pub d3: f64,
-    pub p: f64,
+pub(crate) struct Halley<T = f64> {
+    pub d1: T,
+    pub d2: T,
+    pub d3: T,
+    pub p: T,
 }
 
 impl Rational {
@@ -66,32 +73,11 @@ impl Rational {
     /// `ε cond` at worst.
     #[inline(always)]
     pub fn new(r: &Vec3, q1: &Sym3, q2: &Sym3, parts: &PencilParts, ends: [f64; 4]) -> Self {
-        let [det1, det2, a_end, b_end] = ends;
-        let a = [det1 * a_end, quadratic_form(&parts.mixed, r), det2 * b_end];
-        let b = [
-            det1,
-            frobenius(&parts.adj1, q2),
-            frobenius(q1, &parts.adj2),
-            det2,
-        ];
-        let a_exp = exponent(a[0].max(a[1]).max(a[2]));
-        let b_exp = exponent(b[0].max(b[1]).max(b[2]).max(b[3]));
-        let (sa, sb) = (pow2(-a_exp), pow2(-b_exp));
-        let [a0, a1, a2] = a.map(|x| x * sa);
-        let [b0, b1, b2, b3] = b.map(|x| x * sb);
-        // d/dt of c0 s² + c1 st + c2 t² is (c1 − 2c0) s + (2c2 − c1) t, and of c0 s + c1 t
-        // is c1 − c0 (s = 1 − t).
-        let db = [b1 - 3.0 * b0, 2.0 * (b2 - b1), 3.0 * b3 - b2];
-        let ddb = [db[1] - 2.0 * db[0], 2.0 * db[2] - db[1]];
-        let da = [a1 - 2.0 * a0, 2.0 * a2 - a1];
+        let (a, b) = coefficients(r, q1, q2, parts, ends);
+        let (a_exp, sa) = scale_of(a[0].max(a[1]).max(a[2]));
+        let (b_exp, sb) = scale_of(b[0].max(b[1]).max(b[2]).max(b[3]));
         Self {
-            a: [a0, a1, a2],
-            b: [b0, b1, b2, b3],
-            da,
-            dda: da[1] - da[0],
-            db,
-            ddb,
-            dddb: ddb[1] - ddb[0],
+            poly: Poly::from_scaled(a.map(|x| x * sa), b.map(|x| x * sb)),
             a_exp,
             b_exp,
         }
@@ -125,19 +111,78 @@ impl Rational {
 
     #[inline(always)]
     fn a_at(&self, t: f64, s: f64) -> f64 {
+        self.poly.a_at(t, s)
+    }
+
+    #[inline(always)]
+    fn b_at(&self, t: f64, s: f64) -> f64 {
+        self.poly.b_at(t, s)
+    }
+
+    /// `φ′`, `φ″` and `φ‴` multiplied by `P`, `P²`, `P³` (see [`Halley`]), or `None`
+    /// when `P` is below [`MIN_SCALED_PRODUCT`].
+    #[inline(always)]
+    pub fn halley(&self, t: f64) -> Option<Halley> {
+        let h = self.poly.halley_terms(t, 1.0 - t);
+        (h.p >= MIN_SCALED_PRODUCT).then_some(h)
+    }
+
+    /// `φ′`, `φ″` and `φ‴` of `φ = ln f` at λ, term by term (no range limit).
+    #[inline(always)]
+    pub fn log_derivatives(&self, t: f64) -> [f64; 3] {
+        let s = 1.0 - t;
+        let [a, da, dda, b, db, ddb, dddb] = self.poly.polynomials(t, s);
+        // 1/t = s/(ts) and 1/s = t/(ts): one division for both. (Not so for a and b,
+        // whose product may underflow.)
+        let its = 1.0 / (t * s);
+        let (it, is, ia, ib) = (s * its, t * its, 1.0 / a, 1.0 / b);
+        let (ra, raa) = (da * ia, dda * ia);
+        let (rb, rbb, rbbb) = (db * ib, ddb * ib, dddb * ib);
+        let d1 = it - is + ra - rb;
+        let d2 = -it * it - is * is + raa - ra * ra - rbb + rb * rb;
+        let d3 = 2.0 * (it * it * it - is * is * is) + ra * (2.0 * ra * ra - 3.0 * raa)
+            - rbbb
+            - rb * (2.0 * rb * rb - 3.0 * rbb);
+        [d1, d2, d3]
+    }
+}
+
+impl<T: Arith> Poly<T> {
+    /// From the scaled coefficients of `a` and `b`, with those of their derivatives.
+    #[inline(always)]
+    pub fn from_scaled(a: [T; 3], b: [T; 4]) -> Self {
+        let [a0, a1, a2] = a;
+        let [b0, b1, b2, b3] = b;
+        // d/dt of c0 s² + c1 st + c2 t² is (c1 − 2c0) s + (2c2 − c1) t, and of c0 s + c1 t
+        // is c1 − c0 (s = 1 − t).
+        let db = [b1 - b0.times(3.0), (b2 - b1).times(2.0), b3.times(3.0) - b2];
+        let ddb = [db[1] - db[0].times(2.0), db[2].times(2.0) - db[1]];
+        let da = [a1 - a0.times(2.0), a2.times(2.0) - a1];
+        Self {
+            a,
+            b,
+            da,
+            dda: da[1] - da[0],
+            db,
+            ddb,
+            dddb: ddb[1] - ddb[0],
+        }
+    }
+
+    #[inline(always)]
+    pub fn a_at(&self, t: T, s: T) -> T {
         let [a0, a1, a2] = self.a;
         (a0 * s + a1 * t) * s + a2 * t * t
     }
 
     #[inline(always)]
-    fn b_at(&self, t: f64, s: f64) -> f64 {
-        let [b0, b1, b2, b3] = self.b;
-        ((b0 * s + b1 * t) * s + b2 * t * t) * s + b3 * t * t * t
+    pub fn b_at(&self, t: T, s: T) -> T {
+        cubic(&self.b, t, s)
     }
 
     /// `a, a′, a″, b, b′, b″, b‴` at λ (scaled coefficients).
     #[inline(always)]
-    fn polynomials(&self, t: f64, s: f64) -> [f64; 7] {
+    pub fn polynomials(&self, t: T, s: T) -> [T; 7] {
         let (ss, st, tt) = (s * s, s * t, t * t);
         let [a0, a1, a2] = self.a;
         let [b0, b1, b2, b3] = self.b;
@@ -152,8 +197,8 @@ impl Rational {
         [a, da, self.dda, b, db, ddb, self.dddb]
     }
 
-    /// `φ′`, `φ″` and `φ‴` multiplied by `P`, `P²`, `P³` (see [`Halley`]), or `None`
-    /// when `P` is below [`MIN_SCALED_PRODUCT`].
+    /// `φ′`, `φ″` and `φ‴` at λ = `t` (`s = 1 − t`) multiplied by `P`, `P²`, `P³`
+    /// (see [`Halley`]), whatever the size of `P`.
     ///
     /// With `X1 = P/t`, `X2 = P/s`, `Ya = P a′/a`, `Yb = P b′/b`, `Za = P a″/a`,
     /// `Zb = P b″/b`, `W = P b‴/b` (each a product of polynomials, no division):
@@ -161,45 +206,58 @@ impl Rational {
     /// `D2 = −X1² − X2² + P(Za − Zb) − Ya² + Yb²`,
     /// `D3 = 2(X1³ − X2³) + Ya(2Ya² − 3P Za) − P² W − Yb(2Yb² − 3P Zb)`.
     #[inline(always)]
-    pub fn halley(&self, t: f64) -> Option<Halley> {
-        let s = 1.0 - t;
+    pub fn halley_terms(&self, t: T, s: T) -> Halley<T> {
         let [a, da, dda, b, db, ddb, dddb] = self.polynomials(t, s);
         let ts = t * s;
         let ab = a * b;
         let p = ts * ab;
-        if !(p >= MIN_SCALED_PRODUCT) {
-            return None;
-        }
         let (x1, x2) = (s * ab, t * ab);
         let (tsa, tsb) = (ts * a, ts * b);
         let (ya, yb) = (tsb * da, tsa * db);
         let (za, zb, w) = (tsb * dda, tsa * ddb, tsa * dddb);
         let d1 = x1 - x2 + ya - yb;
         let d2 = -x1 * x1 - x2 * x2 + p * (za - zb) - ya * ya + yb * yb;
-        let d3 = 2.0 * (x1 * x1 * x1 - x2 * x2 * x2) + ya * (2.0 * ya * ya - 3.0 * p * za)
+        let d3 = (x1 * x1 * x1 - x2 * x2 * x2).times(2.0)
+            + ya * (ya.times(2.0) * ya - p.times(3.0) * za)
             - p * p * w
-            - yb * (2.0 * yb * yb - 3.0 * p * zb);
-        Some(Halley { d1, d2, d3, p })
+            - yb * (yb.times(2.0) * yb - p.times(3.0) * zb);
+        Halley { d1, d2, d3, p }
     }
+}
 
-    /// `φ′`, `φ″` and `φ‴` of `φ = ln f` at λ, term by term (no range limit).
-    #[inline(always)]
-    pub fn log_derivatives(&self, t: f64) -> [f64; 3] {
-        let s = 1.0 - t;
-        let [a, da, dda, b, db, ddb, dddb] = self.polynomials(t, s);
-        // 1/t = s/(ts) and 1/s = t/(ts): one division for both. (Not so for a and b,
-        // whose product may underflow.)
-        let its = 1.0 / (t * s);
-        let (it, is, ia, ib) = (s * its, t * its, 1.0 / a, 1.0 / b);
-        let (ra, raa) = (da * ia, dda * ia);
-        let (rb, rbb, rbbb) = (db * ib, ddb * ib, dddb * ib);
-        let d1 = it - is + ra - rb;
-        let d2 = -it * it - is * is + raa - ra * ra - rbb + rb * rb;
-        let d3 = 2.0 * (it * it * it - is * is * is) + ra * (2.0 * ra * ra - 3.0 * raa)
-            - rbbb
-            - rb * (2.0 * rb * rb - 3.0 * rbb);
-        [d1, d2, d3]
-    }
+/// The unscaled coefficients `[A0, A1, A2]`, `[B0, B1, B2, B3]` (see [`Rational::new`]).
+#[inline(always)]
+pub(crate) fn coefficients<T: Arith>(
+    r: &[T; 3],
+    q1: &[T; 6],
+    q2: &[T; 6],
+    parts: &PencilParts<T>,
+    ends: [T; 4],
+) -> ([T; 3], [T; 4]) {
+    let [det1, det2, a_end, b_end] = ends;
+    let a = [det1 * a_end, quadratic_form(&parts.mixed, r), det2 * b_end];
+    let b = [
+        det1,
+        frobenius(&parts.adj1, q2),
+        frobenius(q1, &parts.adj2),
+        det2,
+    ];
+    (a, b)
+}
+
+/// `e` such that `2^-e` brings the largest coefficient `max` of a set into `[1, 2)`,
+/// and that power of two.
+#[inline(always)]
+pub(crate) fn scale_of(max: f64) -> (i32, f64) {
+    let e = exponent(max);
+    (e, pow2(-e))
+}
+
+/// `b0 s³ + b1 s²t + b2 st² + b3 t³`, as `b(λ)` is evaluated everywhere.
+#[inline(always)]
+pub(crate) fn cubic<T: Arith>(b: &[T; 4], t: T, s: T) -> T {
+    let [b0, b1, b2, b3] = *b;
+    ((b0 * s + b1 * t) * s + b2 * t * t) * s + b3 * t * t * t
 }
 
 /// `floor(log2 x)` of a positive normal `x`, clamped to `[-1022, 1022]` so that
@@ -216,7 +274,7 @@ fn exponent(x: f64) -> i32 {
 
 /// `2^k` for `k` in `[-1022, 1023]`.
 #[inline(always)]
-fn pow2(k: i32) -> f64 {
+pub(crate) fn pow2(k: i32) -> f64 {
     f64::from_bits(((k + 1023) as u64) << 52)
 }
 

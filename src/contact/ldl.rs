@@ -6,7 +6,10 @@
 
 #[cfg(test)]
 use super::sym::sym_mul;
-use super::{Sym3, Vec3};
+use super::sym::Arith;
+use super::Sym3;
+#[cfg(test)]
+use super::Vec3;
 
 /// Smallest accepted pivot relative to the largest diagonal entry of `Q`:
 /// `d_k > MIN_RELATIVE_PIVOT · max_i Q_ii`. This bounds the condition number of an
@@ -19,13 +22,13 @@ pub const MIN_RELATIVE_PIVOT: f64 = 1.0 / (1u64 << 40) as f64;
 
 /// The factors of `Q = L D Lᵀ`, with the reciprocals of the pivots.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Ldl {
-    l10: f64,
-    l20: f64,
-    l21: f64,
+pub(crate) struct Ldl<T = f64> {
+    l10: T,
+    l20: T,
+    l21: T,
     /// Pivots `d0, d1, d2`.
-    pub d: [f64; 3],
-    inv_d: [f64; 3],
+    pub d: [T; 3],
+    inv_d: [T; 3],
 }
 
 impl Ldl {
@@ -33,32 +36,12 @@ impl Ldl {
     /// positive (NaN included) or is below [`MIN_RELATIVE_PIVOT`].
     #[inline(always)]
     pub fn factor(q: &Sym3) -> Result<Self, (usize, f64)> {
-        let floor = MIN_RELATIVE_PIVOT * q[0].max(q[3]).max(q[5]);
-        let d0 = q[0];
-        if !(d0 > floor) {
-            return Err((0, d0));
+        let floor = pivot_floor(q);
+        let l = Self::unchecked(q);
+        match l.d.iter().position(|&d| !(d > floor)) {
+            Some(k) => Err((k, l.d[k])),
+            None => Ok(l),
         }
-        let i0 = 1.0 / d0;
-        let l10 = q[1] * i0;
-        let l20 = q[2] * i0;
-        let d1 = q[3] - l10 * q[1];
-        if !(d1 > floor) {
-            return Err((1, d1));
-        }
-        let i1 = 1.0 / d1;
-        let e = q[4] - l20 * q[1];
-        let l21 = e * i1;
-        let d2 = q[5] - l20 * q[2] - l21 * e;
-        if !(d2 > floor) {
-            return Err((2, d2));
-        }
-        Ok(Self {
-            l10,
-            l20,
-            l21,
-            d: [d0, d1, d2],
-            inv_d: [i0, i1, 1.0 / d2],
-        })
     }
 
     /// The factors of `s Q`: `L` is unchanged, the pivots scale by `s`.
@@ -70,23 +53,52 @@ impl Ldl {
             ..*self
         }
     }
+}
+
+/// The pivot below which [`Ldl::factor`] rejects `q`.
+#[inline(always)]
+pub(crate) fn pivot_floor(q: &Sym3) -> f64 {
+    MIN_RELATIVE_PIVOT * q[0].max(q[3]).max(q[5])
+}
+
+impl<T: Arith> Ldl<T> {
+    /// The factors of `q` whatever its pivots ([`Ldl::factor`] checks them).
+    #[inline(always)]
+    pub fn unchecked(q: &[T; 6]) -> Self {
+        let d0 = q[0];
+        let i0 = d0.recip();
+        let l10 = q[1] * i0;
+        let l20 = q[2] * i0;
+        let d1 = q[3] - l10 * q[1];
+        let i1 = d1.recip();
+        let e = q[4] - l20 * q[1];
+        let l21 = e * i1;
+        let d2 = q[5] - l20 * q[2] - l21 * e;
+        Self {
+            l10,
+            l20,
+            l21,
+            d: [d0, d1, d2],
+            inv_d: [i0, i1, d2.recip()],
+        }
+    }
 
     /// `det Q = d0 d1 d2`.
     #[inline(always)]
-    pub fn det(&self) -> f64 {
+    pub fn det(&self) -> T {
         self.d[0] * self.d[1] * self.d[2]
     }
 
     /// `xᵀ Q⁻¹ x`, by forward substitution only: `Σ y_k² / d_k` with `L y = x`.
     #[inline(always)]
-    pub fn quadratic_form(&self, x: &Vec3) -> f64 {
+    pub fn quadratic_form(&self, x: &[T; 3]) -> T {
         let y = self.forward(x);
         y[0] * y[0] * self.inv_d[0] + y[1] * y[1] * self.inv_d[1] + y[2] * y[2] * self.inv_d[2]
     }
 
     /// `Q⁻¹ x`.
     #[inline(always)]
-    pub fn solve(&self, x: &Vec3) -> Vec3 {
+    pub fn solve(&self, x: &[T; 3]) -> [T; 3] {
         let y = self.forward(x);
         let z2 = y[2] * self.inv_d[2];
         let z1 = y[1] * self.inv_d[1] - self.l21 * z2;
@@ -94,8 +106,9 @@ impl Ldl {
         [z0, z1, z2]
     }
 
+    /// `y` with `L y = x`.
     #[inline(always)]
-    fn forward(&self, x: &Vec3) -> Vec3 {
+    fn forward(&self, x: &[T; 3]) -> [T; 3] {
         let y0 = x[0];
         let y1 = x[1] - self.l10 * y0;
         let y2 = x[2] - self.l20 * y0 - self.l21 * y1;

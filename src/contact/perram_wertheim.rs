@@ -111,10 +111,7 @@ fn solve_otherwise(
 
 #[inline(always)]
 fn solve_prepared(p: &Prepared, accurate: bool) -> Result<Contact, ContactError> {
-    let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
-    let parts = PencilParts::new(&p.q1, &p.q2);
-    let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, [p.l1.det(), p.l2.det(), a, b]);
-    let t0 = b.sqrt() / (a.sqrt() + b.sqrt());
+    let (parts, rational, t0) = start(p);
     if !accurate {
         let (t, stop, iterations) = predict(&rational, t0, HALLEY_FINAL_GAIN)?;
         return p.finish(rational.f(t), t, stop, iterations);
@@ -126,6 +123,16 @@ fn solve_prepared(p: &Prepared, accurate: bool) -> Result<Contact, ContactError>
         return p.finish(rational.f(t), t, stop, iterations);
     }
     correct(p, &refiner, t, iterations)
+}
+
+/// The pieces of the rational form of a prepared pair, and the maximiser for two
+/// spheres where the predictor starts.
+#[inline(always)]
+fn start(p: &Prepared) -> (PencilParts, Rational, f64) {
+    let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
+    let parts = PencilParts::new(&p.q1, &p.q2);
+    let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, [p.l1.det(), p.l2.det(), a, b]);
+    (parts, rational, b.sqrt() / (a.sqrt() + b.sqrt()))
 }
 
 /// Halley's method on `φ′ = (ln f)′` from `t`, bracketed. Stops once the gain predicted
@@ -273,8 +280,11 @@ fn correct_further(
     p.finish(v.f, lambda, Stop::MaxIterations, iterations)
 }
 
+mod batch;
 #[cfg(test)]
 mod timing;
+
+pub use batch::contact_functions;
 
 #[cfg(test)]
 mod tests {

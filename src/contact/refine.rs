@@ -16,11 +16,12 @@
 //!   `η² = e₀ᵀρ / rᵀs₀` is at most [`REFINEMENT_TOL`].
 //! - [`refined_ldl`]: from the LDLᵀ factors of `hi` (`η ~ ε cond`), for the rest.
 
-use super::bernstein::Rational;
+use super::bernstein::{cubic, Rational};
 use super::dd::{two_prod, two_sum, Acc};
+use super::lanes::{Mask, F, LANES};
 use super::ldl::Ldl;
 use super::scale::Prepared;
-use super::sym::{dot, sym_mul, PencilParts};
+use super::sym::{dot, sym_mul, Arith, PencilParts};
 use super::{ContactError, Sym3, Vec3};
 
 /// Largest accepted `η² = e₀ᵀρ / rᵀs₀` of the adjugate start (see the module docs):
@@ -62,42 +63,59 @@ pub(crate) struct Refiner<'a> {
     p: &'a Prepared,
     parts: &'a PencilParts,
     rational: &'a Rational,
+    start: Start,
+}
+
+/// The pieces of the adjugate start that depend on the pair only.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Start<T = f64> {
     /// `adj Q1 r = det Q1 · Q1⁻¹ r`, `M r`, `adj Q2 r = det Q2 · Q2⁻¹ r` (the end
     /// vectors from the LDLᵀ factors, which err by `ε cond` rather than `ε cond²`), in
     /// units of the determinant's [`Rational::det_unit`], like `adj Q(λ)` below: so
     /// that `det Q(λ)` is of order 1 and its square in range.
-    v: [Vec3; 3],
+    v: [[T; 3]; 3],
     /// `1 / det_unit`, exact (a power of two).
-    inv_unit: f64,
-    q12: Sym3,
+    inv_unit: T,
+    q12: [T; 6],
+}
+
+impl<T: Arith> Start<T> {
+    /// From the factors of both forms, the mixed adjugate and `1 / det_unit`.
+    #[inline(always)]
+    pub fn new(
+        l1: &Ldl<T>,
+        l2: &Ldl<T>,
+        r: &[T; 3],
+        q1: &[T; 6],
+        q2: &[T; 6],
+        mixed: &[T; 6],
+        inv_unit: T,
+    ) -> Self {
+        let (s1, s2) = (l1.solve(r), l2.solve(r));
+        let (d1, d2) = (l1.det() * inv_unit, l2.det() * inv_unit);
+        let vm = sym_mul(mixed, r);
+        Self {
+            v: [
+                s1.map(|x| x * d1),
+                vm.map(|x| x * inv_unit),
+                s2.map(|x| x * d2),
+            ],
+            inv_unit,
+            q12: std::array::from_fn(|k| q2[k] - q1[k]),
+        }
+    }
 }
 
 impl<'a> Refiner<'a> {
     #[inline(always)]
     pub fn new(p: &'a Prepared, parts: &'a PencilParts, rational: &'a Rational) -> Self {
-        let (s1, s2) = (p.l1.solve(&p.r), p.l2.solve(&p.r));
         let inv_unit = 1.0 / rational.det_unit();
-        let (d1, d2) = (p.l1.det() * inv_unit, p.l2.det() * inv_unit);
-        let (q1, q2) = (&p.q1, &p.q2);
-        let vm = sym_mul(&parts.mixed, &p.r);
+        let start = Start::new(&p.l1, &p.l2, &p.r, &p.q1, &p.q2, &parts.mixed, inv_unit);
         Self {
             p,
             parts,
             rational,
-            v: [
-                [s1[0] * d1, s1[1] * d1, s1[2] * d1],
-                [vm[0] * inv_unit, vm[1] * inv_unit, vm[2] * inv_unit],
-                [s2[0] * d2, s2[1] * d2, s2[2] * d2],
-            ],
-            inv_unit,
-            q12: [
-                q2[0] - q1[0],
-                q2[1] - q1[1],
-                q2[2] - q1[2],
-                q2[3] - q1[3],
-                q2[4] - q1[4],
-                q2[5] - q1[5],
-            ],
+            start,
         }
     }
 
@@ -113,7 +131,7 @@ impl<'a> Refiner<'a> {
         let (r, q1, q2) = (&self.p.r, &self.p.q1, &self.p.q2);
         let beta = self.rational.det_scaled_at(t);
         let (ss, st, tt) = (s * s, s * t, t * t);
-        let [v0, vm, v2] = &self.v;
+        let [v0, vm, v2] = &self.start.v;
         let mut x = [0.0; 3];
         for i in 0..3 {
             x[i] = ss * v0[i] + st * vm[i] + tt * v2[i];
@@ -124,16 +142,19 @@ impl<'a> Refiner<'a> {
         // 1 − β·inv exactly (β·inv = p + e exactly, and 1 − p is exact since p ≈ 1).
         let (bi, bie) = two_prod(beta, inv);
         let inv_lo = ((1.0 - bi) - bie) * inv;
-        let adj = self.parts.adjugate_at(s, t).map(|a| a * self.inv_unit);
+        let adj = self
+            .parts
+            .adjugate_at(s, t)
+            .map(|a| a * self.start.inv_unit);
         let (p, pe) = two_prod(t, s);
         let once = Acc::from_prod(p, inv);
         let mut scale = Acc::from_prod(once.hi, inv);
         scale.lo += (once.lo + p * inv_lo + pe * inv) * inv + once.hi * inv_lo;
         // g′ and g″ set the size of a gain of at most GAIN_TOL and of the term after
         // it, so a few digits do: from x.
-        let u = sym_mul(&self.q12, &x);
+        let u = sym_mul(&self.start.q12, &x);
         let w = sym_mul(&adj, &u);
-        let (uw, wdw) = (dot(&u, &w), dot(&w, &sym_mul(&self.q12, &w)));
+        let (uw, wdw) = (dot(&u, &w), dot(&w, &sym_mul(&self.start.q12, &w)));
         let (i2, i3) = (inv * inv, inv * inv * inv);
         let mut rx = Acc::from_prod(r[0], x[0]);
         rx.add_prod(r[1], x[1]);
@@ -170,9 +191,87 @@ impl<'a> Refiner<'a> {
         // g cancels near λ* and near the ends: from the refined x + e₀/β and rᵀQ⁻¹r.
         let x1 = [x[0] + e0[0] * inv, x[1] + e0[1] * inv, x[2] + e0[2] * inv];
         let h = num.hi * i2;
-        let su = dot(&x1, &sym_mul(&self.q12, &x1)) * i2;
+        let su = dot(&x1, &sym_mul(&self.start.q12, &x1)) * i2;
         Some(Refined::new(f.value(), t, p, h, su, uw * i3, wdw * i2 * i2))
     }
+}
+
+/// Eight pairs, one per lane, as [`at_lanes`] reads them: what a [`Refiner`] refers to.
+pub(crate) struct LanePairs {
+    pub r: [F; 3],
+    pub q1: [F; 6],
+    pub q2: [F; 6],
+    /// The scaled coefficients of `b(λ) = det Q(λ)`.
+    pub b: [F; 4],
+    pub parts: PencilParts<F>,
+    pub start: Start<F>,
+}
+
+/// [`Refiner::at`] for eight pairs at once, lane `k` at `lambda[k]`: bitwise the same
+/// values, with both of its ways computed and the one that applies kept. The mask is
+/// clear where `at` gives `None`.
+#[inline(always)]
+pub(crate) fn at_lanes(pairs: &LanePairs, lambda: F) -> ([Refined; LANES], Mask) {
+    let (t, s) = (lambda, 1.0 - lambda);
+    let LanePairs {
+        r,
+        q1,
+        q2,
+        b,
+        parts,
+        start,
+    } = pairs;
+    let q12 = &start.q12;
+    let beta = cubic(b, t, 1.0 - t);
+    let (ss, st, tt) = (s * s, s * t, t * t);
+    let [v0, vm, v2] = &start.v;
+    let x: [F; 3] = std::array::from_fn(|i| ss * v0[i] + st * vm[i] + tt * v2[i]);
+    let rho = scaled_residual(beta, r, s, t, q1, q2, &x);
+    let inv = 1.0 / beta;
+    let (bi, bie) = two_prod(beta, inv);
+    let inv_lo = ((1.0 - bi) - bie) * inv;
+    let adj = parts.adjugate_at(s, t).map(|a| a * start.inv_unit);
+    let (p, pe) = two_prod(t, s);
+    let once = Acc::from_prod(p, inv);
+    let mut scale = Acc::from_prod(once.hi, inv);
+    scale.lo = scale.lo + ((once.lo + p * inv_lo + pe * inv) * inv + once.hi * inv_lo);
+    let u = sym_mul(q12, &x);
+    let w = sym_mul(&adj, &u);
+    let (uw, wdw) = (dot(&u, &w), dot(&w, &sym_mul(q12, &w)));
+    let (i2, i3) = (inv * inv, inv * inv * inv);
+    let mut rx = Acc::from_prod(r[0], x[0]);
+    rx.add_prod(r[1], x[1]);
+    rx.add_prod(r[2], x[2]);
+    let mut num = Acc::from_prod(beta, rx.hi);
+    num.lo = num.lo + (beta * rx.lo + dot(&x, &rho));
+    let tr_adj = adj[0] + adj[3] + adj[5];
+    let negligible = (dot(&rho, &rho) * tr_adj).le(NEGLIGIBLE_SECOND_ORDER * beta * num.hi);
+    // The way of `at` when the second-order term is negligible...
+    let mut f = Acc::from_prod(scale.hi, num.hi);
+    f.lo = f.lo + (scale.hi * num.lo + scale.lo * num.hi);
+    let su = dot(&x, &u) * i2;
+    let plain = (f.value(), rx.hi * inv, su);
+    // ...and when it is not.
+    let e0 = sym_mul(&adj, &rho);
+    let second = dot(&e0, &rho) * inv;
+    let accepted = second.abs().le(REFINEMENT_TOL * num.hi);
+    num.lo = num.lo + second;
+    let mut f = Acc::from_prod(scale.hi, num.hi);
+    f.lo = f.lo + (scale.hi * num.lo + scale.lo * num.hi);
+    let x1: [F; 3] = std::array::from_fn(|i| x[i] + e0[i] * inv);
+    let su1 = dot(&x1, &sym_mul(q12, &x1)) * i2;
+    let second_order = (f.value(), num.hi * i2, su1);
+    let pick = |a: F, b: F| negligible.select(a, b);
+    let (f, h, su) = (
+        pick(plain.0, second_order.0),
+        pick(plain.1, second_order.1),
+        pick(plain.2, second_order.2),
+    );
+    let (uw, wdw) = ((uw * i3).to_array(), (wdw * i2 * i2).to_array());
+    let [f, t, p, h, su] = [f, t, p, h, su].map(F::to_array);
+    let values =
+        std::array::from_fn(|k| Refined::new(f[k], t[k], p[k], h[k], su[k], uw[k], wdw[k]));
+    (values, negligible.or(accepted))
 }
 
 /// Relative size `2^-80 ≈ 8e-25` below which the second-order term `ρᵀQ⁻¹ρ` of the
@@ -185,10 +284,17 @@ const NEGLIGIBLE_SECOND_ORDER: f64 = 1.0 / (1u128 << 80) as f64;
 /// products), `β r` and `hi x` exact, and the four terms of each row summed in a tree of
 /// error-free additions.
 #[inline(always)]
-fn scaled_residual(beta: f64, r: &Vec3, s: f64, t: f64, q1: &Sym3, q2: &Sym3, x: &Vec3) -> Vec3 {
+fn scaled_residual<T: Arith>(
+    beta: T,
+    r: &[T; 3],
+    s: T,
+    t: T,
+    q1: &[T; 6],
+    q2: &[T; 6],
+    x: &[T; 3],
+) -> [T; 3] {
     let (hi, lo) = pencil_dd(s, t, q1, q2);
-    let mut rho = [0.0; 3];
-    for i in 0..3 {
+    std::array::from_fn(|i| {
         let [k0, k1, k2] = IDX[i];
         let (br, e0) = two_prod(beta, r[i]);
         let (p0, e1) = two_prod(hi[k0], x[0]);
@@ -198,23 +304,20 @@ fn scaled_residual(beta: f64, r: &Vec3, s: f64, t: f64, q1: &Sym3, q2: &Sym3, x:
         let (b, eb) = two_sum(-p1, -p2);
         let (c, ec) = two_sum(a, b);
         let small = lo[k0] * x[0] + lo[k1] * x[1] + lo[k2] * x[2];
-        rho[i] = c + ((ea + eb + ec) + (e0 - e1 - e2 - e3) - small);
-    }
-    rho
+        c + ((ea + eb + ec) + (e0 - e1 - e2 - e3) - small)
+    })
 }
 
 /// `Q(λ) = s q1 + t q2` as `hi + lo`, exact up to `ε²` relative.
 #[inline(always)]
-fn pencil_dd(s: f64, t: f64, q1: &Sym3, q2: &Sym3) -> (Sym3, Sym3) {
-    let mut hi = [0.0; 6];
-    let mut lo = [0.0; 6];
-    for k in 0..6 {
+fn pencil_dd<T: Arith>(s: T, t: T, q1: &[T; 6], q2: &[T; 6]) -> ([T; 6], [T; 6]) {
+    let parts: [(T, T); 6] = std::array::from_fn(|k| {
         let (p1, e1) = two_prod(s, q1[k]);
         let (p2, e2) = two_prod(t, q2[k]);
         let (h, e3) = two_sum(p1, p2);
-        (hi[k], lo[k]) = (h, e1 + e2 + e3);
-    }
-    (hi, lo)
+        (h, e1 + e2 + e3)
+    });
+    (parts.map(|p| p.0), parts.map(|p| p.1))
 }
 
 /// `r − (hi + lo) s₀` with exact products and compensated sums.
@@ -292,13 +395,13 @@ mod tests {
         let (t, s) = (lambda, 1.0 - lambda);
         let (r, q1, q2) = (&refiner.p.r, &refiner.p.q1, &refiner.p.q2);
         let beta = refiner.rational.det_scaled_at(t);
-        let [v0, vm, v2] = &refiner.v;
+        let [v0, vm, v2] = &refiner.start.v;
         let x: Vec3 = std::array::from_fn(|i| s * s * v0[i] + s * t * vm[i] + t * t * v2[i]);
         let rho = scaled_residual(beta, r, s, t, q1, q2, &x);
         let adj = refiner
             .parts
             .adjugate_at(s, t)
-            .map(|a| a * refiner.inv_unit);
+            .map(|a| a * refiner.start.inv_unit);
         let e0 = sym_mul(&adj, &rho);
         dot(&e0, &rho) / beta / (beta * dot(r, &x))
     }

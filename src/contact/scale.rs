@@ -115,21 +115,34 @@ impl Prepared {
         stop: Stop,
         iterations: u32,
     ) -> Result<Contact, ContactError> {
-        let mu2 = if self.mu2_exp == 0 {
-            mu2
-        } else {
-            ldexp(mu2, self.mu2_exp)
-        };
-        if !mu2.is_finite() {
-            return Err(ContactError::Overflow { what: "μ²" });
-        }
-        Ok(Contact {
-            mu2,
-            lambda,
-            stop,
-            iterations,
-        })
+        finish(self.mu2_exp, mu2, lambda, stop, iterations)
     }
+}
+
+/// The [`Contact`] of a pair rescaled so that μ² must be multiplied by `2^mu2_exp`,
+/// or an overflow error.
+#[inline(always)]
+pub(crate) fn finish(
+    mu2_exp: i32,
+    mu2: f64,
+    lambda: f64,
+    stop: Stop,
+    iterations: u32,
+) -> Result<Contact, ContactError> {
+    let mu2 = if mu2_exp == 0 {
+        mu2
+    } else {
+        ldexp(mu2, mu2_exp)
+    };
+    if !mu2.is_finite() {
+        return Err(ContactError::Overflow { what: "μ²" });
+    }
+    Ok(Contact {
+        mu2,
+        lambda,
+        stop,
+        iterations,
+    })
 }
 
 /// Whether every diagonal entry of `q1`, `q2` and the largest `|r12_i|` (unless all are

@@ -1,10 +1,64 @@
 //! Small algebra of symmetric 3×3 matrices stored as their upper triangle.
 
 use super::{Sym3, Vec3};
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// What the small algebra here and the error-free transformations of [`super::dd`]
+/// need of a number: `f64`, or [`super::lanes::F`] for eight pairs at once (the same
+/// operations, so the same roundings, lane by lane).
+pub(crate) trait Arith:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// `c · self`, rounded as that product is.
+    fn times(self, c: f64) -> Self;
+    /// `self · b + c`, rounded once.
+    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// `1 / self`.
+    fn recip(self) -> Self;
+}
+
+impl Arith for f64 {
+    #[inline(always)]
+    fn times(self, c: f64) -> Self {
+        c * self
+    }
+
+    #[inline(always)]
+    fn mul_add(self, b: Self, c: Self) -> Self {
+        f64::mul_add(self, b, c)
+    }
+
+    #[inline(always)]
+    fn recip(self) -> Self {
+        1.0 / self
+    }
+}
+
+impl Arith for super::lanes::F {
+    #[inline(always)]
+    fn times(self, c: f64) -> Self {
+        c * self
+    }
+
+    #[inline(always)]
+    fn mul_add(self, b: Self, c: Self) -> Self {
+        super::lanes::F::mul_add(self, b, c)
+    }
+
+    #[inline(always)]
+    fn recip(self) -> Self {
+        1.0 / self
+    }
+}
 
 /// `Q u` for a symmetric `Q`.
 #[inline(always)]
-pub(crate) fn sym_mul(q: &Sym3, u: &Vec3) -> Vec3 {
+pub(crate) fn sym_mul<T: Arith>(q: &[T; 6], u: &[T; 3]) -> [T; 3] {
     [
         q[0] * u[0] + q[1] * u[1] + q[2] * u[2],
         q[1] * u[0] + q[3] * u[1] + q[4] * u[2],
@@ -13,7 +67,7 @@ pub(crate) fn sym_mul(q: &Sym3, u: &Vec3) -> Vec3 {
 }
 
 #[inline(always)]
-pub(crate) fn dot(a: &Vec3, b: &Vec3) -> f64 {
+pub(crate) fn dot<T: Arith>(a: &[T; 3], b: &[T; 3]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
@@ -43,18 +97,18 @@ pub(crate) fn pencil_coefficients(m0: &Sym3, m1: &Sym3, x: &Vec3) -> ([f64; 3], 
 
 /// The matrix pieces of `adj(sM0 + tM1) = s² adj M0 + st M + t² adj M1`.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct PencilParts {
+pub(crate) struct PencilParts<T = f64> {
     /// `adj M0`.
-    pub adj1: Sym3,
+    pub adj1: [T; 6],
     /// `adj M1`.
-    pub adj2: Sym3,
+    pub adj2: [T; 6],
     /// The polarised (mixed) adjugate `M`.
-    pub mixed: Sym3,
+    pub mixed: [T; 6],
 }
 
-impl PencilParts {
+impl<T: Arith> PencilParts<T> {
     #[inline(always)]
-    pub fn new(m0: &Sym3, m1: &Sym3) -> Self {
+    pub fn new(m0: &[T; 6], m1: &[T; 6]) -> Self {
         Self {
             adj1: adjugate(m0),
             adj2: adjugate(m1),
@@ -64,7 +118,7 @@ impl PencilParts {
 
     /// `adj(sM0 + tM1)`.
     #[inline(always)]
-    pub fn adjugate_at(&self, s: f64, t: f64) -> Sym3 {
+    pub fn adjugate_at(&self, s: T, t: T) -> [T; 6] {
         let (ss, st, tt) = (s * s, s * t, t * t);
         let (a, m, b) = (&self.adj1, &self.mixed, &self.adj2);
         [
@@ -80,7 +134,7 @@ impl PencilParts {
 
 /// Adjugate of a symmetric matrix, itself symmetric.
 #[inline(always)]
-pub(crate) fn adjugate(m: &Sym3) -> Sym3 {
+pub(crate) fn adjugate<T: Arith>(m: &[T; 6]) -> [T; 6] {
     [
         m[3] * m[5] - m[4] * m[4],
         m[2] * m[4] - m[1] * m[5],
@@ -93,14 +147,14 @@ pub(crate) fn adjugate(m: &Sym3) -> Sym3 {
 
 /// The polarised adjugate: the coefficient of `λ` in `adj(A + λB)`.
 #[inline(always)]
-pub(crate) fn polarised_adjugate(a: &Sym3, b: &Sym3) -> Sym3 {
+pub(crate) fn polarised_adjugate<T: Arith>(a: &[T; 6], b: &[T; 6]) -> [T; 6] {
     [
-        a[3] * b[5] + b[3] * a[5] - 2.0 * a[4] * b[4],
+        a[3] * b[5] + b[3] * a[5] - a[4].times(2.0) * b[4],
         a[2] * b[4] + b[2] * a[4] - a[1] * b[5] - b[1] * a[5],
         a[1] * b[4] + b[1] * a[4] - a[2] * b[3] - b[2] * a[3],
-        a[0] * b[5] + b[0] * a[5] - 2.0 * a[2] * b[2],
+        a[0] * b[5] + b[0] * a[5] - a[2].times(2.0) * b[2],
         a[1] * b[2] + b[1] * a[2] - a[0] * b[4] - b[0] * a[4],
-        a[0] * b[3] + b[0] * a[3] - 2.0 * a[1] * b[1],
+        a[0] * b[3] + b[0] * a[3] - a[1].times(2.0) * b[1],
     ]
 }
 
@@ -112,15 +166,15 @@ pub(crate) fn det(m: &Sym3, adj: &Sym3) -> f64 {
 
 /// Frobenius product `⟨s, t⟩ = tr(s t)` of two symmetric matrices.
 #[inline(always)]
-pub(crate) fn frobenius(s: &Sym3, t: &Sym3) -> f64 {
-    s[0] * t[0] + s[3] * t[3] + s[5] * t[5] + 2.0 * (s[1] * t[1] + s[2] * t[2] + s[4] * t[4])
+pub(crate) fn frobenius<T: Arith>(s: &[T; 6], t: &[T; 6]) -> T {
+    s[0] * t[0] + s[3] * t[3] + s[5] * t[5] + (s[1] * t[1] + s[2] * t[2] + s[4] * t[4]).times(2.0)
 }
 
 /// `xᵀ s x` for a symmetric `s`.
 #[inline(always)]
-pub(crate) fn quadratic_form(s: &Sym3, x: &Vec3) -> f64 {
+pub(crate) fn quadratic_form<T: Arith>(s: &[T; 6], x: &[T; 3]) -> T {
     s[0] * x[0] * x[0]
         + s[3] * x[1] * x[1]
         + s[5] * x[2] * x[2]
-        + 2.0 * (s[1] * x[0] * x[1] + s[2] * x[0] * x[2] + s[4] * x[1] * x[2])
+        + (s[1] * x[0] * x[1] + s[2] * x[0] * x[2] + s[4] * x[1] * x[2]).times(2.0)
 }

@@ -99,3 +99,30 @@ fn instruction_count_workload() {
         }
     }
 }
+
+/// Per-pair time of [`contact_functions`] against the scalar [`contact_function`].
+#[test]
+#[ignore]
+fn batch_against_scalar() {
+    let cases = typical_cases();
+    let pairs: Vec<_> = cases.iter().map(|c| (c.r12, c.q1, c.q2)).collect();
+    let mut v: [Vec<f64>; 2] = Default::default();
+    for _ in 0..1000 {
+        let s = std::time::Instant::now();
+        for (r, q1, q2) in &pairs {
+            black_box(contact_function(black_box(r), q1, q2).unwrap());
+        }
+        v[0].push(s.elapsed().as_nanos() as f64 / pairs.len() as f64);
+        let s = std::time::Instant::now();
+        black_box(contact_functions(black_box(&pairs)));
+        v[1].push(s.elapsed().as_nanos() as f64 / pairs.len() as f64);
+    }
+    for (name, x) in ["scalar", "batch"].iter().zip(&mut v) {
+        x.sort_by(f64::total_cmp);
+        println!(
+            "{name:>8}: median {:6.1} ns, fastest {:6.1} ns per pair",
+            x[x.len() / 2],
+            x[0]
+        );
+    }
+}

@@ -1,0 +1,152 @@
+//! [`contact_function`] for many pairs, eight at a time in vector lanes.
+//!
+//! The predictor and the corrector's refined evaluation run as structure of arrays
+//! ([`F`]): the same operations as the scalar code, lane by lane, so every value is
+//! bitwise that of [`contact_function`]. A pair the lanes cannot take as they stand
+//! (rescaling, `r12 = 0`, a form that does not factor, the predictor's term-by-term
+//! fallback or its iteration cap, the corrector's slower paths) goes through the
+//! scalar code; its lane computes a stand-in pair, whose result is dropped.
+
+use super::*;
+use crate::contact::bernstein::{coefficients, pow2, scale_of, Poly, MIN_SCALED_PRODUCT};
+use crate::contact::lanes::{gather, Mask, F, LANES};
+use crate::contact::ldl::pivot_floor;
+use crate::contact::refine::{at_lanes, LanePairs, Start};
+use crate::contact::scale::finish;
+
+/// [`contact_function`] of every pair `(r12, q1, q2)`, in order: bitwise the same
+/// results, computed eight pairs at a time.
+pub fn contact_functions(pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>> {
+    let mut out = Vec::with_capacity(pairs.len());
+    let mut chunks = pairs.chunks_exact(LANES);
+    for chunk in &mut chunks {
+        out.extend(eight(chunk));
+    }
+    let rest = chunks.remainder().iter();
+    out.extend(rest.map(|(r, q1, q2)| contact_function(r, q1, q2)));
+    out
+}
+
+/// Two unit spheres two radii apart: what a lane computes when its pair goes scalar.
+const STAND_IN: (Vec3, Sym3, Sym3) = (
+    [2.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0, 1.0, 0.0, 1.0],
+    [1.0, 0.0, 0.0, 1.0, 0.0, 1.0],
+);
+
+/// [`solve`]'s common path for eight pairs, lane `k` for `pairs[k]`.
+#[inline(always)]
+fn eight(pairs: &[(Vec3, Sym3, Sym3)]) -> [Result<Contact, ContactError>; LANES] {
+    let plain = Mask::from_fn(|k| {
+        let (r12, q1, q2) = &pairs[k];
+        needs_no_rescaling(r12, q1, q2) && *r12 != [0.0; 3]
+    });
+    let chosen: [&(Vec3, Sym3, Sym3); LANES] =
+        std::array::from_fn(|k| if plain.get(k) { &pairs[k] } else { &STAND_IN });
+    let r = gather(&chosen, |p| p.0);
+    let (q1, q2) = (gather(&chosen, |p| p.1), gather(&chosen, |p| p.2));
+    // Ldl::factor, lane by lane.
+    let (l1, l2) = (Ldl::unchecked(&q1), Ldl::unchecked(&q2));
+    let floor1 = F::from_fn(|k| pivot_floor(&chosen[k].1));
+    let floor2 = F::from_fn(|k| pivot_floor(&chosen[k].2));
+    let factored = (0..3).fold(Mask::splat(true), |m, i| {
+        m.and(l1.d[i].gt(floor1)).and(l2.d[i].gt(floor2))
+    });
+    // start(p), with Rational::new's scaling lane by lane.
+    let (a, b) = (l1.quadratic_form(&r), l2.quadratic_form(&r));
+    let parts = PencilParts::new(&q1, &q2);
+    let (ca, cb) = coefficients(&r, &q1, &q2, &parts, [l1.det(), l2.det(), a, b]);
+    let (a_scale, b_scale) = (
+        largest(&ca).map(|m| scale_of(m).1),
+        largest(&cb).map(|m| scale_of(m).1),
+    );
+    let inv_unit = largest(&cb).map(|m| 1.0 / pow2(scale_of(m).0));
+    let poly = Poly::from_scaled(ca.map(|x| x * a_scale), cb.map(|x| x * b_scale));
+    let t0 = b.sqrt() / (a.sqrt() + b.sqrt());
+    let (t, iterations, predicted) = predict_lanes(&poly, t0, CORRECTOR_SWITCH_GAIN);
+    let start = Start::new(&l1, &l2, &r, &q1, &q2, &parts.mixed, inv_unit);
+    let lanes = LanePairs {
+        r,
+        q1,
+        q2,
+        b: poly.b,
+        parts,
+        start,
+    };
+    let (refined, accepted) = at_lanes(&lanes, t);
+    let common = plain.and(factored).and(predicted);
+    std::array::from_fn(|k| {
+        let (r12, q1, q2) = &pairs[k];
+        if !common.get(k) {
+            return contact_function(r12, q1, q2);
+        }
+        let (t, iterations) = (t.to_array()[k], iterations[k]);
+        if accepted.get(k) {
+            if let Some((mu2, polished)) = finished(&refined[k], t, (0.0, 1.0)) {
+                return finish(0, mu2, polished, Stop::Converged, iterations + 1);
+            }
+        }
+        correct_further(r12, q1, q2, 0, t, iterations)
+    })
+}
+
+/// The largest of a set of coefficients, lane by lane, as [`Rational::new`] takes it.
+#[inline(always)]
+fn largest<const N: usize>(c: &[F; N]) -> F {
+    let c = c.map(F::to_array);
+    F::from_fn(|k| c[1..].iter().fold(c[0][k], |m, x| m.max(x[k])))
+}
+
+/// [`predict`] in eight lanes: where each lane stops, its evaluations, and a mask clear
+/// for lanes that [`predict`] would take elsewhere (the term-by-term derivatives, an
+/// error, or the iteration cap).
+#[inline(always)]
+fn predict_lanes(poly: &Poly<F>, t0: F, switch: f64) -> (F, [u32; LANES], Mask) {
+    let zero = F::splat(0.0);
+    let mut t = t0;
+    let (mut lo, mut hi) = (zero, F::splat(1.0));
+    let mut running = Mask::splat(true);
+    let mut usable = Mask::splat(true);
+    let mut iterations = [0; LANES];
+    for _ in 0..MAX_ITERATIONS {
+        let Halley { d1, d2, d3, p } = poly.halley_terms(t, 1.0 - t);
+        // `halley` declines (P small or NaN), or the derivatives are not finite (x − x
+        // is 0 exactly for finite x): `predict` would take another way.
+        let sum = d1 + d2 + d3;
+        let scalar_way = p
+            .ge(F::splat(MIN_SCALED_PRODUCT))
+            .and((sum - sum).eq(zero))
+            .not();
+        usable = usable.and(running.and(scalar_way).not());
+        lo = d1.gt(zero).select(t, lo);
+        hi = d1.lt(zero).select(t, hi);
+        let curvature = -d2;
+        let halley_denominator = 2.0 * d2 * d2 - d1 * d3;
+        let halley = t - 2.0 * d1 * d2 * p / halley_denominator;
+        let halley_ok = halley_denominator
+            .gt(zero)
+            .and(halley.ge(lo))
+            .and(halley.le(hi));
+        let newton = t + d1 * p / curvature;
+        let newton_ok = curvature.gt(zero).and(newton.ge(lo)).and(newton.le(hi));
+        let next = halley_ok.select(halley, newton_ok.select(newton, 0.5 * (lo + hi)));
+        let gain2 = d1 * d1;
+        let small_gain = gain2
+            .le((2.0 * GAIN_TOL) * curvature)
+            .or(halley_ok.and(gain2.le((2.0 * switch) * curvature)));
+        let converged = d1.eq(zero).or(curvature.gt(zero).and(small_gain));
+        let stalled = next.eq(t).or((hi - lo).le(f64::EPSILON * hi));
+        t = running.select(next, t);
+        for (k, n) in iterations.iter_mut().enumerate() {
+            *n += u32::from(running.get(k));
+        }
+        running = running.and(converged.or(stalled).not());
+        if !running.any() {
+            break;
+        }
+    }
+    (t, iterations, usable.and(running.not()))
+}
+
+#[cfg(test)]
+mod tests;
