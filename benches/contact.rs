@@ -169,9 +169,9 @@ fn answer_all(
                 .collect(),
         ),
         Subject::Ours(m) => Answers::Values(
-            set.pairs
-                .iter()
-                .map(|(r, q1, q2)| match m.evaluate(r, q1, q2) {
+            m.evaluate_all(&set.pairs)
+                .into_iter()
+                .map(|answer| match answer {
                     Ok(Answer::Value { mu2, .. }) => Some(mu2),
                     _ => None,
                 })

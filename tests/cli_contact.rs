@@ -175,3 +175,39 @@ fn time_prints_one_json_line_with_the_rounds() {
         json["ns_per_call_min"].as_f64().unwrap() <= json["ns_per_call_median"].as_f64().unwrap()
     );
 }
+
+/// `--method batch` writes the same file as `--method accurate`, bad rows included:
+/// the reference set with two bad rows among its 1000 pairs.
+#[test]
+fn batch_writes_what_accurate_writes() {
+    let dir = scratch("batch");
+    let reference = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/contact_typical.csv");
+    let mut text = std::fs::read_to_string(reference).unwrap();
+    let columns = text.lines().next().unwrap().split(',').count();
+    let bad_row = |first: &str| {
+        let mut fields = vec!["1"; columns];
+        fields[0] = first;
+        fields[3] = "-1";
+        fields.join(",") + "\n"
+    };
+    text.push_str(&bad_row("1"));
+    text.push_str(&bad_row("x"));
+    let cases = dir.join("cases.csv");
+    std::fs::write(&cases, text).unwrap();
+    let mut outputs = vec![];
+    for method in ["accurate", "batch"] {
+        let out = dir.join(format!("{method}.csv"));
+        let run = pack(&[
+            "contact",
+            cases.to_str().unwrap(),
+            "--method",
+            method,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(run.status.code(), Some(2), "{method}");
+        outputs.push(std::fs::read_to_string(out).unwrap());
+    }
+    assert_eq!(outputs[0].lines().count(), 1003);
+    assert!(outputs[0] == outputs[1], "batch and accurate differ");
+}

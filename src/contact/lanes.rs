@@ -62,6 +62,12 @@ impl F {
         Self(imp::abs(self.0))
     }
 
+    /// Set where the lane is neither infinite nor NaN.
+    #[inline(always)]
+    pub fn is_finite(self) -> Mask {
+        self.abs().lt(F::splat(f64::INFINITY))
+    }
+
     #[inline(always)]
     pub fn lt(self, o: Self) -> Mask {
         Mask(imp::lt(self.0, o.0))
@@ -440,5 +446,20 @@ mod tests {
             assert!(!m.any());
         }
         assert_eq!(F::splat(-2.5).abs().to_array(), [2.5; 8]);
+        let odd = F::from_array([
+            1.0,
+            f64::NAN,
+            f64::INFINITY,
+            -f64::INFINITY,
+            0.0,
+            -1e308,
+            5e-324,
+            2.0,
+        ]);
+        let finite = odd.is_finite();
+        assert_eq!(
+            (0..8).map(|k| finite.get(k)).collect::<Vec<_>>(),
+            [true, false, false, false, true, true, true, true]
+        );
     }
 }

@@ -8,8 +8,6 @@
 use super::sym::sym_mul;
 use super::sym::Arith;
 use super::Sym3;
-#[cfg(test)]
-use super::Vec3;
 
 /// Smallest accepted pivot relative to the largest diagonal entry of `Q`:
 /// `d_k > MIN_RELATIVE_PIVOT · max_i Q_ii`. This bounds the condition number of an

@@ -1,8 +1,8 @@
 //! The contact methods by name, for the command line, tests and benchmarks.
 
 use super::{
-    contact_function, contact_function_fast, overlaps, rational::contact_function_rational, wang,
-    ContactError, Stop, Sym3, Vec3,
+    contact_function, contact_function_fast, contact_functions, overlaps,
+    rational::contact_function_rational, wang, Contact, ContactError, Stop, Sym3, Vec3,
 };
 use std::fmt;
 use std::str::FromStr;
@@ -13,6 +13,9 @@ pub enum Method {
     /// [`contact_function`]: Halley on the rational form in double, then Newton on a
     /// residual refined in double-double.
     Accurate,
+    /// [`contact_functions`]: the accurate method for eight pairs at a time in vector
+    /// lanes, bitwise the same values. Its time is per pair.
+    Batch,
     /// [`contact_function_fast`]: the Halley predictor only.
     Fast,
     /// [`contact_function_rational`]: root of the degree-6 numerator of f′.
@@ -41,8 +44,9 @@ pub enum Answer {
 
 impl Method {
     /// Every method, in the order reports list them.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Accurate,
+        Method::Batch,
         Method::Fast,
         Method::Rational,
         Method::Overlap,
@@ -53,6 +57,7 @@ impl Method {
     pub fn name(self) -> &'static str {
         match self {
             Method::Accurate => "accurate",
+            Method::Batch => "batch",
             Method::Fast => "fast",
             Method::Rational => "rational",
             Method::Overlap => "overlap",
@@ -65,21 +70,40 @@ impl Method {
         matches!(self, Method::Overlap | Method::Wang)
     }
 
-    /// Answers the contact question for one pair.
+    /// Answers the contact question for one pair ([`Method::Batch`]: as
+    /// [`Method::Accurate`], whose values it gives).
     #[inline]
     pub fn evaluate(self, r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Answer, ContactError> {
-        let value = |c: super::Contact| Answer::Value {
-            mu2: c.mu2,
-            lambda: c.lambda,
-            stop: c.stop,
-        };
         Ok(match self {
-            Method::Accurate => value(contact_function(r12, q1, q2)?),
+            Method::Accurate | Method::Batch => value(contact_function(r12, q1, q2)?),
             Method::Fast => value(contact_function_fast(r12, q1, q2)?),
             Method::Rational => value(contact_function_rational(r12, q1, q2)?),
             Method::Overlap => Answer::Overlap(overlaps(r12, q1, q2)?),
             Method::Wang => Answer::Overlap(!wang::separated(r12, q1, q2)?),
         })
+    }
+
+    /// Answers the contact question for every pair, in order: [`Method::Batch`] eight
+    /// at a time, the others one by one.
+    pub fn evaluate_all(self, pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Answer, ContactError>> {
+        match self {
+            Method::Batch => contact_functions(pairs)
+                .into_iter()
+                .map(|c| c.map(value))
+                .collect(),
+            _ => pairs
+                .iter()
+                .map(|(r12, q1, q2)| self.evaluate(r12, q1, q2))
+                .collect(),
+        }
+    }
+}
+
+fn value(c: Contact) -> Answer {
+    Answer::Value {
+        mu2: c.mu2,
+        lambda: c.lambda,
+        stop: c.stop,
     }
 }
 
@@ -91,7 +115,7 @@ impl fmt::Display for Method {
 
 /// An unknown method name.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown method {0:?}: expected one of accurate, fast, rational, overlap, wang")]
+#[error("unknown method {0:?}: expected one of accurate, batch, fast, rational, overlap, wang")]
 pub struct UnknownMethod(pub String);
 
 impl FromStr for Method {
@@ -118,7 +142,8 @@ pub struct Timing {
 impl Method {
     /// Times the method over `pairs`: whole passes over the set, repeated until at
     /// least `min_rounds` passes and `min_seconds` have elapsed. Only the calls are
-    /// timed; errors are answers like any other (their cost counts).
+    /// timed; errors are answers like any other (their cost counts). For
+    /// [`Method::Batch`] a pass is one call on the whole set, and "per call" is per pair.
     pub fn time(self, pairs: &[(Vec3, Sym3, Sym3)], min_rounds: usize, min_seconds: f64) -> Timing {
         use std::hint::black_box;
         use std::time::Instant;
@@ -127,8 +152,12 @@ impl Method {
         let n = pairs.len().max(1) as f64;
         while per_call.len() < min_rounds || start.elapsed().as_secs_f64() < min_seconds {
             let t = Instant::now();
-            for (r, q1, q2) in pairs {
-                let _ = black_box(self.evaluate(black_box(r), black_box(q1), black_box(q2)));
+            if self == Method::Batch {
+                black_box(contact_functions(black_box(pairs)));
+            } else {
+                for (r, q1, q2) in pairs {
+                    let _ = black_box(self.evaluate(black_box(r), black_box(q1), black_box(q2)));
+                }
             }
             per_call.push(t.elapsed().as_nanos() as f64 / n);
         }

@@ -23,11 +23,18 @@ pub fn run(cases: &Path, method: Method, output: Option<&Path>, time: bool) -> R
     .with_context(|| format!("{name}: cannot read cases"))?;
 
     let parsed: Vec<_> = (0..table.rows.len()).map(|i| table.case(i)).collect();
+    let pairs: Vec<_> = parsed
+        .iter()
+        .flatten()
+        .map(|c| (c.r12, c.q1, c.q2))
+        .collect();
+    let mut evaluated = method.evaluate_all(&pairs).into_iter();
     let answers: Vec<Result<Answer, String>> = parsed
         .iter()
         .map(|case| match case {
-            Ok(c) => method
-                .evaluate(&c.r12, &c.q1, &c.q2)
+            Ok(c) => evaluated
+                .next()
+                .expect("one answer per parsed row")
                 .map_err(|e| format!("line {}: {e}", c.line)),
             Err(e) => Err(e.to_string()),
         })
@@ -45,11 +52,6 @@ pub fn run(cases: &Path, method: Method, output: Option<&Path>, time: bool) -> R
     }
 
     if time {
-        let pairs: Vec<_> = parsed
-            .iter()
-            .flatten()
-            .map(|c| (c.r12, c.q1, c.q2))
-            .collect();
         let t = method.time(&pairs, 5, 0.2);
         eprintln!(
             "{}",

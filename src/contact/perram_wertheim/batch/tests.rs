@@ -1,11 +1,16 @@
 use super::*;
 use crate::contact::test_pairs::{random_pairs, reference_rows};
 
-/// Bitwise the same `Result` as the scalar function, pair by pair.
+/// Bitwise the same `Result` as the scalar function, pair by pair, from the lanes
+/// (whatever the target) and from [`contact_functions`].
 fn assert_same(pairs: &[(Vec3, Sym3, Sym3)]) {
-    let batch = contact_functions(pairs);
+    assert_lanes_same(pairs, &in_lanes(pairs));
+    assert_lanes_same(pairs, &contact_functions(pairs));
+}
+
+fn assert_lanes_same(pairs: &[(Vec3, Sym3, Sym3)], batch: &[Result<Contact, ContactError>]) {
     assert_eq!(batch.len(), pairs.len());
-    for (k, ((r12, q1, q2), got)) in pairs.iter().zip(&batch).enumerate() {
+    for (k, ((r12, q1, q2), got)) in pairs.iter().zip(batch).enumerate() {
         let want = contact_function(r12, q1, q2);
         match (got, &want) {
             (Ok(g), Ok(w)) => {
