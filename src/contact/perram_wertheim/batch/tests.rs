@@ -43,8 +43,10 @@ fn batch_equals_scalar_on_random_pairs_and_odd_lengths() {
     assert_same(&[]);
 }
 
-/// Lanes whose pair leaves the common path (zero offset, rescaling, not positive
-/// definite, non-finite) go through the scalar code, next to plain ones.
+/// Lanes whose pair leaves the common path go through the scalar code, next to plain
+/// ones: zero offset, rescaling, not positive definite, non-finite, singular, and two
+/// spheres of radii 1 and 2^-40, whose maximiser λ = 1 − 2^-40 sends the predictor to
+/// its term-by-term derivatives.
 #[test]
 fn batch_equals_scalar_where_pairs_leave_the_common_path() {
     let unit = [1.0, 0.0, 0.0, 1.0, 0.0, 1.0];
@@ -56,6 +58,7 @@ fn batch_equals_scalar_where_pairs_leave_the_common_path() {
         ([1.0, 0.0, 0.0], [-1.0, 0.0, 0.0, 1.0, 0.0, 1.0], unit),
         ([f64::NAN, 0.0, 0.0], unit, unit),
         ([1.0, 0.0, 0.0], unit, [1.0, 0.0, 0.0, 1.0, 0.0, 0.0]),
+        ([1.0, 0.0, 0.0], unit, unit.map(|x| x * 2f64.powi(-80))),
     ];
     for (k, pair) in odd.iter().enumerate() {
         let mut pairs = vec![plain; 16];
