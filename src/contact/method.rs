@@ -1,7 +1,7 @@
 //! The contact methods by name, for the command line, tests and benchmarks.
 
 use super::{
-    contact_function, contact_function_fast, contact_functions, overlaps,
+    contact_function, contact_function_fast, contact_functions, contact_functions_fast, overlaps,
     rational::contact_function_rational, wang, Contact, ContactError, Stop, Sym3, Vec3,
 };
 use std::fmt;
@@ -18,6 +18,9 @@ pub enum Method {
     Batch,
     /// [`contact_function_fast`]: the Halley predictor only.
     Fast,
+    /// [`contact_functions_fast`]: the fast method eight pairs at a time, bitwise the
+    /// same values. Its time is per pair.
+    BatchFast,
     /// [`contact_function_rational`]: root of the degree-6 numerator of f′.
     Rational,
     /// [`overlaps`]: the yes/no decision with early exits.
@@ -44,10 +47,11 @@ pub enum Answer {
 
 impl Method {
     /// Every method, in the order reports list them.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::Accurate,
         Method::Batch,
         Method::Fast,
+        Method::BatchFast,
         Method::Rational,
         Method::Overlap,
         Method::Wang,
@@ -59,6 +63,7 @@ impl Method {
             Method::Accurate => "accurate",
             Method::Batch => "batch",
             Method::Fast => "fast",
+            Method::BatchFast => "batch-fast",
             Method::Rational => "rational",
             Method::Overlap => "overlap",
             Method::Wang => "wang",
@@ -70,27 +75,28 @@ impl Method {
         matches!(self, Method::Overlap | Method::Wang)
     }
 
-    /// Answers the contact question for one pair ([`Method::Batch`]: as
-    /// [`Method::Accurate`], whose values it gives).
+    /// Answers the contact question for one pair (the batch methods: as the method whose
+    /// values they give).
     #[inline]
     pub fn evaluate(self, r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Answer, ContactError> {
         Ok(match self {
             Method::Accurate | Method::Batch => value(contact_function(r12, q1, q2)?),
-            Method::Fast => value(contact_function_fast(r12, q1, q2)?),
+            Method::Fast | Method::BatchFast => value(contact_function_fast(r12, q1, q2)?),
             Method::Rational => value(contact_function_rational(r12, q1, q2)?),
             Method::Overlap => Answer::Overlap(overlaps(r12, q1, q2)?),
             Method::Wang => Answer::Overlap(!wang::separated(r12, q1, q2)?),
         })
     }
 
-    /// Answers the contact question for every pair, in order: [`Method::Batch`] eight
+    /// Answers the contact question for every pair, in order: the batch methods eight
     /// at a time, the others one by one.
     pub fn evaluate_all(self, pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Answer, ContactError>> {
+        let values = |all: Vec<Result<Contact, ContactError>>| {
+            all.into_iter().map(|c| c.map(value)).collect()
+        };
         match self {
-            Method::Batch => contact_functions(pairs)
-                .into_iter()
-                .map(|c| c.map(value))
-                .collect(),
+            Method::Batch => values(contact_functions(pairs)),
+            Method::BatchFast => values(contact_functions_fast(pairs)),
             _ => pairs
                 .iter()
                 .map(|(r12, q1, q2)| self.evaluate(r12, q1, q2))
@@ -115,7 +121,9 @@ impl fmt::Display for Method {
 
 /// An unknown method name.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown method {0:?}: expected one of accurate, batch, fast, rational, overlap, wang")]
+#[error(
+    "unknown method {0:?}: expected one of accurate, batch, fast, batch-fast, rational, overlap, wang"
+)]
 pub struct UnknownMethod(pub String);
 
 impl FromStr for Method {
@@ -143,7 +151,7 @@ impl Method {
     /// Times the method over `pairs`: whole passes over the set, repeated until at
     /// least `min_rounds` passes and `min_seconds` have elapsed. Only the calls are
     /// timed; errors are answers like any other (their cost counts). For
-    /// [`Method::Batch`] a pass is one call on the whole set, and "per call" is per pair.
+    /// the batch methods a pass is one call on the whole set, and "per call" is per pair.
     pub fn time(self, pairs: &[(Vec3, Sym3, Sym3)], min_rounds: usize, min_seconds: f64) -> Timing {
         use std::hint::black_box;
         use std::time::Instant;
@@ -154,6 +162,8 @@ impl Method {
             let t = Instant::now();
             if self == Method::Batch {
                 black_box(contact_functions(black_box(pairs)));
+            } else if self == Method::BatchFast {
+                black_box(contact_functions_fast(black_box(pairs)));
             } else {
                 for (r, q1, q2) in pairs {
                     let _ = black_box(self.evaluate(black_box(r), black_box(q1), black_box(q2)));

@@ -32,8 +32,8 @@ pub use ldl::MIN_RELATIVE_PIVOT;
 pub use method::{Answer, Method, Timing, UnknownMethod};
 pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};
 pub use perram_wertheim::{
-    contact_function, contact_function_fast, contact_functions, CORRECTOR_SWITCH_GAIN,
-    CUBIC_TERM_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS,
+    contact_function, contact_function_fast, contact_functions, contact_functions_fast,
+    CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS,
 };
 pub use prepared::PreparedEllipsoid;
 pub use refine::REFINEMENT_TOL;

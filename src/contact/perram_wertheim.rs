@@ -284,7 +284,7 @@ mod batch;
 #[cfg(test)]
 mod timing;
 
-pub use batch::contact_functions;
+pub use batch::{contact_functions, contact_functions_fast};
 
 #[cfg(test)]
 mod tests {

@@ -1,4 +1,5 @@
-//! [`contact_function`] for many pairs, eight at a time in vector lanes.
+//! [`contact_function`] and [`contact_function_fast`] for many pairs, eight at a time
+//! in vector lanes.
 //!
 //! The predictor and the corrector's refined evaluation run as structure of arrays
 //! ([`F`]): the same operations as the scalar code, lane by lane, so every value is
@@ -12,7 +13,7 @@ use crate::contact::bernstein::{coefficients, pow2, scale_of, Poly, MIN_SCALED_P
 use crate::contact::lanes::{gather, Mask, F, LANES};
 use crate::contact::ldl::pivot_floor;
 use crate::contact::refine::{at_lanes, LanePairs, Start};
-use crate::contact::scale::finish;
+use crate::contact::scale::{finish, ldexp};
 
 /// [`contact_function`] of every pair `(r12, q1, q2)`, in order: bitwise the same
 /// results, computed eight pairs at a time where the build targets AVX-512, one by one
@@ -35,25 +36,44 @@ use crate::contact::scale::finish;
 /// }
 /// ```
 pub fn contact_functions(pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>> {
+    many::<true>(pairs)
+}
+
+/// [`contact_function_fast`] of every pair, in order, as [`contact_functions`] does
+/// for [`contact_function`]: bitwise the same results.
+pub fn contact_functions_fast(pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>> {
+    many::<false>(pairs)
+}
+
+#[inline(always)]
+fn many<const ACCURATE: bool>(pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>> {
     if cfg!(all(target_arch = "x86_64", target_feature = "avx512f")) {
-        in_lanes(pairs)
+        in_lanes::<ACCURATE>(pairs)
     } else {
         pairs
             .iter()
-            .map(|(r12, q1, q2)| contact_function(r12, q1, q2))
+            .map(|(r12, q1, q2)| one::<ACCURATE>(r12, q1, q2))
             .collect()
     }
 }
 
-/// [`contact_functions`] in lanes, whatever the target.
-fn in_lanes(pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>> {
+/// The scalar function of the method.
+#[inline(always)]
+fn one<const ACCURATE: bool>(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Contact, ContactError> {
+    solve(r12, q1, q2, ACCURATE)
+}
+
+/// [`many`] in lanes, whatever the target.
+fn in_lanes<const ACCURATE: bool>(
+    pairs: &[(Vec3, Sym3, Sym3)],
+) -> Vec<Result<Contact, ContactError>> {
     let mut out = Vec::with_capacity(pairs.len());
     let mut chunks = pairs.chunks_exact(LANES);
     for chunk in &mut chunks {
-        out.extend(eight(chunk));
+        out.extend(eight::<ACCURATE>(chunk));
     }
     let rest = chunks.remainder().iter();
-    out.extend(rest.map(|(r, q1, q2)| contact_function(r, q1, q2)));
+    out.extend(rest.map(|(r, q1, q2)| one::<ACCURATE>(r, q1, q2)));
     out
 }
 
@@ -66,7 +86,9 @@ const STAND_IN: (Vec3, Sym3, Sym3) = (
 
 /// [`solve`]'s common path for eight pairs, lane `k` for `pairs[k]`.
 #[inline(always)]
-fn eight(pairs: &[(Vec3, Sym3, Sym3)]) -> [Result<Contact, ContactError>; LANES] {
+fn eight<const ACCURATE: bool>(
+    pairs: &[(Vec3, Sym3, Sym3)],
+) -> [Result<Contact, ContactError>; LANES] {
     let plain = Mask::from_fn(|k| {
         let (r12, q1, q2) = &pairs[k];
         needs_no_rescaling(r12, q1, q2) && *r12 != [0.0; 3]
@@ -90,10 +112,31 @@ fn eight(pairs: &[(Vec3, Sym3, Sym3)]) -> [Result<Contact, ContactError>; LANES]
         largest(&ca).map(|m| scale_of(m).1),
         largest(&cb).map(|m| scale_of(m).1),
     );
-    let inv_unit = largest(&cb).map(|m| 1.0 / pow2(scale_of(m).0));
     let poly = Poly::from_scaled(ca.map(|x| x * a_scale), cb.map(|x| x * b_scale));
     let t0 = b.sqrt() / (a.sqrt() + b.sqrt());
-    let (t, iterations, predicted) = predict_lanes(&poly, t0, CORRECTOR_SWITCH_GAIN);
+    let switch = if ACCURATE {
+        CORRECTOR_SWITCH_GAIN
+    } else {
+        HALLEY_FINAL_GAIN
+    };
+    let (t, iterations, predicted) = predict_lanes(&poly, t0, switch);
+    let common = plain.and(factored).and(predicted);
+    if !ACCURATE {
+        // Rational::f at the predictor's λ, with its scaling lane by lane.
+        let s = 1.0 - t;
+        let f = (s * t * poly.a_at(t, s) / poly.b_at(t, s)).to_array();
+        let (a_max, b_max) = (largest(&ca).to_array(), largest(&cb).to_array());
+        let t = t.to_array();
+        return std::array::from_fn(|k| {
+            if !common.get(k) {
+                let (r12, q1, q2) = &pairs[k];
+                return one::<false>(r12, q1, q2);
+            }
+            let exp = scale_of(a_max[k]).0 - scale_of(b_max[k]).0;
+            finish(0, ldexp(f[k], exp), t[k], Stop::Converged, iterations[k])
+        });
+    }
+    let inv_unit = largest(&cb).map(|m| 1.0 / pow2(scale_of(m).0));
     let start = Start::new(&l1, &l2, &r, &q1, &q2, &parts.mixed, inv_unit);
     let lanes = LanePairs {
         r,
@@ -104,7 +147,6 @@ fn eight(pairs: &[(Vec3, Sym3, Sym3)]) -> [Result<Contact, ContactError>; LANES]
         start,
     };
     let (refined, accepted) = at_lanes(&lanes, t);
-    let common = plain.and(factored).and(predicted);
     std::array::from_fn(|k| {
         let (r12, q1, q2) = &pairs[k];
         if !common.get(k) {

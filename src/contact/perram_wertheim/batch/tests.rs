@@ -1,17 +1,25 @@
 use super::*;
 use crate::contact::test_pairs::{random_pairs, reference_rows};
 
-/// Bitwise the same `Result` as the scalar function, pair by pair, from the lanes
-/// (whatever the target) and from [`contact_functions`].
+/// Bitwise the same `Result` as the scalar functions, pair by pair, from the lanes
+/// (whatever the target) and from [`contact_functions`] and [`contact_functions_fast`].
 fn assert_same(pairs: &[(Vec3, Sym3, Sym3)]) {
-    assert_lanes_same(pairs, &in_lanes(pairs));
-    assert_lanes_same(pairs, &contact_functions(pairs));
+    assert_lanes_same(pairs, &in_lanes::<true>(pairs), contact_function);
+    assert_lanes_same(pairs, &contact_functions(pairs), contact_function);
+    assert_lanes_same(pairs, &in_lanes::<false>(pairs), contact_function_fast);
+    assert_lanes_same(pairs, &contact_functions_fast(pairs), contact_function_fast);
 }
 
-fn assert_lanes_same(pairs: &[(Vec3, Sym3, Sym3)], batch: &[Result<Contact, ContactError>]) {
+type Scalar = fn(&Vec3, &Sym3, &Sym3) -> Result<Contact, ContactError>;
+
+fn assert_lanes_same(
+    pairs: &[(Vec3, Sym3, Sym3)],
+    batch: &[Result<Contact, ContactError>],
+    scalar: Scalar,
+) {
     assert_eq!(batch.len(), pairs.len());
     for (k, ((r12, q1, q2), got)) in pairs.iter().zip(batch).enumerate() {
-        let want = contact_function(r12, q1, q2);
+        let want = scalar(r12, q1, q2);
         match (got, &want) {
             (Ok(g), Ok(w)) => {
                 assert_eq!(g.mu2.to_bits(), w.mu2.to_bits(), "pair {k}: {g:?} vs {w:?}");
