@@ -1,9 +1,9 @@
 //! [`contact_function`] and [`contact_function_fast`] for many pairs, eight at a time
 //! in vector lanes.
 //!
-//! The predictor and the corrector's refined evaluation run as structure of arrays
-//! ([`F`]): the same operations as the scalar code, lane by lane, so every value is
-//! bitwise that of [`contact_function`]. A pair the lanes cannot take as they stand
+//! The setup, the predictor and the corrector's refined evaluation run as structure of
+//! arrays ([`F`]): the same operations as the scalar code, lane by lane, so every value
+//! is bitwise that of the scalar function. A pair the lanes cannot take as they stand
 //! (rescaling, `r12 = 0`, a form that does not factor, the predictor's term-by-term
 //! fallback or its iteration cap, the corrector's slower paths) goes through the
 //! scalar code; its lane computes a stand-in pair, whose result is dropped.
@@ -64,7 +64,7 @@ fn one<const ACCURATE: bool>(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Contact
 }
 
 /// [`many`] in lanes, whatever the target.
-fn in_lanes<const ACCURATE: bool>(
+pub(super) fn in_lanes<const ACCURATE: bool>(
     pairs: &[(Vec3, Sym3, Sym3)],
 ) -> Vec<Result<Contact, ContactError>> {
     let mut out = Vec::with_capacity(pairs.len());
