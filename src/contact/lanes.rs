@@ -3,8 +3,9 @@
 //! Every operation is the IEEE operation of the scalar code, lane by lane (`mul_add`
 //! rounds once, like `f64::mul_add`), so results are bitwise those of the scalar
 //! functions; the batch tests check it. With AVX-512 a value is one register and each
-//! operation one instruction; otherwise an array does the same lane by lane. (Not
-//! `std::simd`, which is not stable; LLVM does not vectorise the array form well.)
+//! operation one instruction, with AVX2 two of each; otherwise an array does the same
+//! lane by lane. (Not `std::simd`, which is not stable; LLVM does not vectorise the
+//! array form well.)
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -185,232 +186,37 @@ impl Neg for F {
 }
 
 #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
-mod imp {
-    //! SAFETY (every block here): the cfg above guarantees AVX-512F, which implies FMA,
-    //! for the whole build; loads and stores touch arrays of exactly eight elements.
-    use std::arch::x86_64::*;
+#[path = "lanes/avx512.rs"]
+mod imp;
 
-    pub type Raw = __m512d;
-    pub type RawMask = __mmask8;
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma",
+    not(target_feature = "avx512f")
+))]
+#[path = "lanes/avx2.rs"]
+mod imp;
 
-    #[inline(always)]
-    pub fn splat(x: f64) -> Raw {
-        unsafe { _mm512_set1_pd(x) }
-    }
+#[cfg(not(all(
+    target_arch = "x86_64",
+    any(
+        target_feature = "avx512f",
+        all(target_feature = "avx2", target_feature = "fma")
+    )
+)))]
+#[path = "lanes/portable.rs"]
+mod imp;
 
-    #[inline(always)]
-    pub fn load(x: [f64; 8]) -> Raw {
-        unsafe { _mm512_loadu_pd(x.as_ptr()) }
-    }
-
-    #[inline(always)]
-    pub fn store(x: Raw) -> [f64; 8] {
-        let mut out = [0.0; 8];
-        unsafe { _mm512_storeu_pd(out.as_mut_ptr(), x) };
-        out
-    }
-
-    #[inline(always)]
-    pub fn add(x: Raw, y: Raw) -> Raw {
-        unsafe { _mm512_add_pd(x, y) }
-    }
-
-    #[inline(always)]
-    pub fn sub(x: Raw, y: Raw) -> Raw {
-        unsafe { _mm512_sub_pd(x, y) }
-    }
-
-    #[inline(always)]
-    pub fn mul(x: Raw, y: Raw) -> Raw {
-        unsafe { _mm512_mul_pd(x, y) }
-    }
-
-    #[inline(always)]
-    pub fn div(x: Raw, y: Raw) -> Raw {
-        unsafe { _mm512_div_pd(x, y) }
-    }
-
-    #[inline(always)]
-    pub fn mul_add(x: Raw, y: Raw, z: Raw) -> Raw {
-        unsafe { _mm512_fmadd_pd(x, y, z) }
-    }
-
-    #[inline(always)]
-    pub fn sqrt(x: Raw) -> Raw {
-        unsafe { _mm512_sqrt_pd(x) }
-    }
-
-    #[inline(always)]
-    pub fn abs(x: Raw) -> Raw {
-        unsafe { _mm512_abs_pd(x) }
-    }
-
-    /// The sign bit flipped, as `-x` does (also for zeros and NaNs).
-    #[inline(always)]
-    pub fn neg(x: Raw) -> Raw {
-        unsafe {
-            let sign = _mm512_set1_epi64(i64::MIN);
-            _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(x), sign))
-        }
-    }
-
-    // Ordered, quiet comparisons: false where either side is NaN, as in Rust.
-    #[inline(always)]
-    pub fn lt(x: Raw, y: Raw) -> RawMask {
-        unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(x, y) }
-    }
-
-    #[inline(always)]
-    pub fn le(x: Raw, y: Raw) -> RawMask {
-        unsafe { _mm512_cmp_pd_mask::<_CMP_LE_OQ>(x, y) }
-    }
-
-    #[inline(always)]
-    pub fn eq(x: Raw, y: Raw) -> RawMask {
-        unsafe { _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(x, y) }
-    }
-
-    #[inline(always)]
-    pub fn select(m: RawMask, yes: Raw, no: Raw) -> Raw {
-        unsafe { _mm512_mask_blend_pd(m, no, yes) }
-    }
-
-    #[inline(always)]
-    pub fn mask_from(b: [bool; 8]) -> RawMask {
-        b.iter().rev().fold(0, |m, &x| (m << 1) | u8::from(x))
-    }
-
-    #[inline(always)]
-    pub fn mask_get(m: RawMask, k: usize) -> bool {
-        (m >> k) & 1 == 1
-    }
-
-    #[inline(always)]
-    pub fn and(a: RawMask, b: RawMask) -> RawMask {
-        a & b
-    }
-
-    #[inline(always)]
-    pub fn or(a: RawMask, b: RawMask) -> RawMask {
-        a | b
-    }
-
-    #[inline(always)]
-    pub fn not(a: RawMask) -> RawMask {
-        !a
-    }
-}
-
-#[cfg(not(all(target_arch = "x86_64", target_feature = "avx512f")))]
-mod imp {
-    pub type Raw = [f64; 8];
-    pub type RawMask = [bool; 8];
-
-    #[inline(always)]
-    fn lanes<T>(f: impl FnMut(usize) -> T) -> [T; 8] {
-        std::array::from_fn(f)
-    }
-
-    #[inline(always)]
-    pub fn splat(x: f64) -> Raw {
-        [x; 8]
-    }
-
-    #[inline(always)]
-    pub fn load(x: [f64; 8]) -> Raw {
-        x
-    }
-
-    #[inline(always)]
-    pub fn store(x: Raw) -> [f64; 8] {
-        x
-    }
-
-    #[inline(always)]
-    pub fn add(x: Raw, y: Raw) -> Raw {
-        lanes(|k| x[k] + y[k])
-    }
-
-    #[inline(always)]
-    pub fn sub(x: Raw, y: Raw) -> Raw {
-        lanes(|k| x[k] - y[k])
-    }
-
-    #[inline(always)]
-    pub fn mul(x: Raw, y: Raw) -> Raw {
-        lanes(|k| x[k] * y[k])
-    }
-
-    #[inline(always)]
-    pub fn div(x: Raw, y: Raw) -> Raw {
-        lanes(|k| x[k] / y[k])
-    }
-
-    #[inline(always)]
-    pub fn mul_add(x: Raw, y: Raw, z: Raw) -> Raw {
-        lanes(|k| x[k].mul_add(y[k], z[k]))
-    }
-
-    #[inline(always)]
-    pub fn sqrt(x: Raw) -> Raw {
-        x.map(f64::sqrt)
-    }
-
-    #[inline(always)]
-    pub fn abs(x: Raw) -> Raw {
-        x.map(f64::abs)
-    }
-
-    #[inline(always)]
-    pub fn neg(x: Raw) -> Raw {
-        x.map(|v| -v)
-    }
-
-    #[inline(always)]
-    pub fn lt(x: Raw, y: Raw) -> RawMask {
-        lanes(|k| x[k] < y[k])
-    }
-
-    #[inline(always)]
-    pub fn le(x: Raw, y: Raw) -> RawMask {
-        lanes(|k| x[k] <= y[k])
-    }
-
-    #[inline(always)]
-    pub fn eq(x: Raw, y: Raw) -> RawMask {
-        lanes(|k| x[k] == y[k])
-    }
-
-    #[inline(always)]
-    pub fn select(m: RawMask, yes: Raw, no: Raw) -> Raw {
-        lanes(|k| if m[k] { yes[k] } else { no[k] })
-    }
-
-    #[inline(always)]
-    pub fn mask_from(b: [bool; 8]) -> RawMask {
-        b
-    }
-
-    #[inline(always)]
-    pub fn mask_get(m: RawMask, k: usize) -> bool {
-        m[k]
-    }
-
-    #[inline(always)]
-    pub fn and(a: RawMask, b: RawMask) -> RawMask {
-        lanes(|k| a[k] & b[k])
-    }
-
-    #[inline(always)]
-    pub fn or(a: RawMask, b: RawMask) -> RawMask {
-        lanes(|k| a[k] | b[k])
-    }
-
-    #[inline(always)]
-    pub fn not(a: RawMask) -> RawMask {
-        a.map(|x| !x)
-    }
-}
+/// Whether the build targets vector registers for the lanes (AVX-512, or AVX2 with
+/// FMA); without, they are plain arrays.
+pub(crate) const IN_REGISTERS: bool = cfg!(all(
+    target_arch = "x86_64",
+    any(
+        target_feature = "avx512f",
+        all(target_feature = "avx2", target_feature = "fma")
+    )
+));
 
 #[cfg(test)]
 mod tests {

@@ -16,7 +16,9 @@ pub(crate) trait Arith:
 {
     /// `c · self`, rounded as that product is.
     fn times(self, c: f64) -> Self;
-    /// `self · b + c`, rounded once.
+    /// `self · b + c`, rounded once (for `two_prod`, which uses it only where the
+    /// target has FMA).
+    #[cfg_attr(not(target_feature = "fma"), allow(dead_code))]
     fn mul_add(self, b: Self, c: Self) -> Self;
     /// `1 / self`.
     fn recip(self) -> Self;

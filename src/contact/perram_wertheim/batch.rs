@@ -10,18 +10,20 @@
 
 use super::*;
 use crate::contact::bernstein::{coefficients, pow2, scale_of, Poly, MIN_SCALED_PRODUCT};
-use crate::contact::lanes::{gather, Mask, F, LANES};
+use crate::contact::lanes::{gather, Mask, F, IN_REGISTERS, LANES};
 use crate::contact::ldl::pivot_floor;
 use crate::contact::refine::{at_lanes, LanePairs, Start};
 use crate::contact::scale::{finish, ldexp};
 
 /// [`contact_function`] of every pair `(r12, q1, q2)`, in order: bitwise the same
-/// results, computed eight pairs at a time where the build targets AVX-512, one by one
-/// elsewhere.
+/// results, computed eight pairs at a time where the build targets AVX-512 or AVX2 with
+/// FMA, one by one elsewhere.
 ///
-/// Without AVX-512 the lanes are plain arrays, which LLVM does not vectorise well: they
-/// took 194 ns per pair against 132 ns for the scalar code (`target-cpu=x86-64-v3`,
-/// `cargo test --release --lib batch_against_scalar -- --ignored --nocapture`).
+/// Per pair on the typical reference set, against the scalar code in the same run
+/// (`cargo test --release --lib batch_against_scalar -- --ignored --nocapture`): 48 ns
+/// against 120 with AVX-512 (`target-cpu=native` here), 56 against 131 with AVX2
+/// (`target-cpu=x86-64-v3`). As plain arrays (`target-cpu=x86-64`) the lanes took 237
+/// ns against 191, so there the pairs go through the scalar code.
 ///
 /// ```
 /// use grainpack::contact::{contact_function, contact_functions, Ellipsoid};
@@ -47,7 +49,7 @@ pub fn contact_functions_fast(pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contac
 
 #[inline(always)]
 fn many<const ACCURATE: bool>(pairs: &[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>> {
-    if cfg!(all(target_arch = "x86_64", target_feature = "avx512f")) {
+    if IN_REGISTERS {
         in_lanes::<ACCURATE>(pairs)
     } else {
         pairs

@@ -1,0 +1,116 @@
+//! [`super::F`] as one AVX-512 register.
+//!
+//! SAFETY (every block here): the module is compiled only where the build targets
+//! AVX-512F (which implies FMA); loads and stores touch arrays of exactly eight elements.
+
+use std::arch::x86_64::*;
+
+pub type Raw = __m512d;
+pub type RawMask = __mmask8;
+
+#[inline(always)]
+pub fn splat(x: f64) -> Raw {
+    unsafe { _mm512_set1_pd(x) }
+}
+
+#[inline(always)]
+pub fn load(x: [f64; 8]) -> Raw {
+    unsafe { _mm512_loadu_pd(x.as_ptr()) }
+}
+
+#[inline(always)]
+pub fn store(x: Raw) -> [f64; 8] {
+    let mut out = [0.0; 8];
+    unsafe { _mm512_storeu_pd(out.as_mut_ptr(), x) };
+    out
+}
+
+#[inline(always)]
+pub fn add(x: Raw, y: Raw) -> Raw {
+    unsafe { _mm512_add_pd(x, y) }
+}
+
+#[inline(always)]
+pub fn sub(x: Raw, y: Raw) -> Raw {
+    unsafe { _mm512_sub_pd(x, y) }
+}
+
+#[inline(always)]
+pub fn mul(x: Raw, y: Raw) -> Raw {
+    unsafe { _mm512_mul_pd(x, y) }
+}
+
+#[inline(always)]
+pub fn div(x: Raw, y: Raw) -> Raw {
+    unsafe { _mm512_div_pd(x, y) }
+}
+
+#[inline(always)]
+pub fn mul_add(x: Raw, y: Raw, z: Raw) -> Raw {
+    unsafe { _mm512_fmadd_pd(x, y, z) }
+}
+
+#[inline(always)]
+pub fn sqrt(x: Raw) -> Raw {
+    unsafe { _mm512_sqrt_pd(x) }
+}
+
+#[inline(always)]
+pub fn abs(x: Raw) -> Raw {
+    unsafe { _mm512_abs_pd(x) }
+}
+
+/// The sign bit flipped, as `-x` does (also for zeros and NaNs).
+#[inline(always)]
+pub fn neg(x: Raw) -> Raw {
+    unsafe {
+        let sign = _mm512_set1_epi64(i64::MIN);
+        _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(x), sign))
+    }
+}
+
+// Ordered, quiet comparisons: false where either side is NaN, as in Rust.
+#[inline(always)]
+pub fn lt(x: Raw, y: Raw) -> RawMask {
+    unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(x, y) }
+}
+
+#[inline(always)]
+pub fn le(x: Raw, y: Raw) -> RawMask {
+    unsafe { _mm512_cmp_pd_mask::<_CMP_LE_OQ>(x, y) }
+}
+
+#[inline(always)]
+pub fn eq(x: Raw, y: Raw) -> RawMask {
+    unsafe { _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(x, y) }
+}
+
+#[inline(always)]
+pub fn select(m: RawMask, yes: Raw, no: Raw) -> Raw {
+    unsafe { _mm512_mask_blend_pd(m, no, yes) }
+}
+
+#[inline(always)]
+pub fn mask_from(b: [bool; 8]) -> RawMask {
+    b.iter().rev().fold(0, |m, &x| (m << 1) | u8::from(x))
+}
+
+#[inline(always)]
+pub fn mask_get(m: RawMask, k: usize) -> bool {
+    (m >> k) & 1 == 1
+}
+
+#[inline(always)]
+pub fn and(a: RawMask, b: RawMask) -> RawMask {
+    a & b
+}
+
+#[inline(always)]
+pub fn or(a: RawMask, b: RawMask) -> RawMask {
+    a | b
+}
+
+#[inline(always)]
+pub fn not(a: RawMask) -> RawMask {
+    !a
+}
