@@ -74,8 +74,8 @@ impl Rational {
     #[inline(always)]
     pub fn new(r: &Vec3, q1: &Sym3, q2: &Sym3, parts: &PencilParts, ends: [f64; 4]) -> Self {
         let (a, b) = coefficients(r, q1, q2, parts, ends);
-        let (a_exp, sa) = scale_of(a[0].max(a[1]).max(a[2]));
-        let (b_exp, sb) = scale_of(b[0].max(b[1]).max(b[2]).max(b[3]));
+        let (a_exp, sa) = scale_of(largest(&a));
+        let (b_exp, sb) = scale_of(largest(&b));
         Self {
             poly: Poly::from_scaled(a.map(|x| x * sa), b.map(|x| x * sb)),
             a_exp,
@@ -86,9 +86,7 @@ impl Rational {
     /// `f(λ)`.
     #[inline(always)]
     pub fn f(&self, t: f64) -> f64 {
-        let s = 1.0 - t;
-        let (a, b) = (self.a_at(t, s), self.b_at(t, s));
-        ldexp(s * t * a / b, self.a_exp - self.b_exp)
+        ldexp(self.poly.ratio(t, 1.0 - t), self.a_exp - self.b_exp)
     }
 
     /// `det Q(λ) = b(λ)`, unscaled.
@@ -98,25 +96,15 @@ impl Rational {
     }
 
     /// `det Q(λ)` in units of [`Rational::det_unit`]: of order 1 on most of `[0, 1]`.
-    #[inline(always)]
+    #[cfg(test)]
     pub fn det_scaled_at(&self, t: f64) -> f64 {
-        self.b_at(t, 1.0 - t)
+        self.poly.b_at(t, 1.0 - t)
     }
 
     /// The power of two taken out of the coefficients of `b`.
     #[inline(always)]
     pub fn det_unit(&self) -> f64 {
         pow2(self.b_exp)
-    }
-
-    #[inline(always)]
-    fn a_at(&self, t: f64, s: f64) -> f64 {
-        self.poly.a_at(t, s)
-    }
-
-    #[inline(always)]
-    fn b_at(&self, t: f64, s: f64) -> f64 {
-        self.poly.b_at(t, s)
     }
 
     /// `φ′`, `φ″` and `φ‴` multiplied by `P`, `P²`, `P³` (see [`Halley`]), or `None`
@@ -178,6 +166,12 @@ impl<T: Arith> Poly<T> {
     #[inline(always)]
     pub fn b_at(&self, t: T, s: T) -> T {
         cubic(&self.b, t, s)
+    }
+
+    /// `st a / b` at λ = `t` (`s = 1 − t`): `f` in the coefficients' scaled units.
+    #[inline(always)]
+    pub fn ratio(&self, t: T, s: T) -> T {
+        s * t * self.a_at(t, s) / self.b_at(t, s)
     }
 
     /// `a, a′, a″, b, b′, b″, b‴` at λ (scaled coefficients).
@@ -243,6 +237,12 @@ pub(crate) fn coefficients<T: Arith>(
         det2,
     ];
     (a, b)
+}
+
+/// The largest of a set of coefficients, in the order [`Rational::new`] compares them.
+#[inline(always)]
+pub(crate) fn largest(c: &[f64]) -> f64 {
+    c[1..].iter().fold(c[0], |m, &x| m.max(x))
 }
 
 /// `e` such that `2^-e` brings the largest coefficient `max` of a set into `[1, 2)`,

@@ -41,12 +41,6 @@ impl F {
         Self::from_array(std::array::from_fn(f))
     }
 
-    /// A scalar function applied lane by lane.
-    #[inline(always)]
-    pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
-        Self::from_array(self.to_array().map(f))
-    }
-
     /// `self · b + c` with one rounding, lane by lane.
     #[inline(always)]
     pub fn mul_add(self, b: Self, c: Self) -> Self {

@@ -14,6 +14,8 @@ pub(crate) trait Arith:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
+    /// `c` itself (in every lane).
+    fn constant(c: f64) -> Self;
     /// `c · self`, rounded as that product is.
     fn times(self, c: f64) -> Self;
     /// `self · b + c`, rounded once (for `two_prod`, which uses it only where the
@@ -25,6 +27,11 @@ pub(crate) trait Arith:
 }
 
 impl Arith for f64 {
+    #[inline(always)]
+    fn constant(c: f64) -> Self {
+        c
+    }
+
     #[inline(always)]
     fn times(self, c: f64) -> Self {
         c * self
@@ -42,6 +49,11 @@ impl Arith for f64 {
 }
 
 impl Arith for super::lanes::F {
+    #[inline(always)]
+    fn constant(c: f64) -> Self {
+        Self::splat(c)
+    }
+
     #[inline(always)]
     fn times(self, c: f64) -> Self {
         c * self

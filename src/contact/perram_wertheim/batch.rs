@@ -9,10 +9,10 @@
 //! scalar code; its lane computes a stand-in pair, whose result is dropped.
 
 use super::*;
-use crate::contact::bernstein::{coefficients, pow2, scale_of, Poly, MIN_SCALED_PRODUCT};
+use crate::contact::bernstein::{coefficients, largest, pow2, scale_of, Poly, MIN_SCALED_PRODUCT};
 use crate::contact::lanes::{gather, Mask, F, IN_REGISTERS, LANES};
 use crate::contact::ldl::pivot_floor;
-use crate::contact::refine::{at_lanes, LanePairs, Start};
+use crate::contact::refine::{at_lanes, Pair, Start};
 use crate::contact::scale::{finish, ldexp};
 
 /// [`contact_function`] of every pair `(r12, q1, q2)`, in order: bitwise the same
@@ -110,10 +110,7 @@ fn eight<const ACCURATE: bool>(
     let (a, b) = (l1.quadratic_form(&r), l2.quadratic_form(&r));
     let parts = PencilParts::new(&q1, &q2);
     let (ca, cb) = coefficients(&r, &q1, &q2, &parts, [l1.det(), l2.det(), a, b]);
-    let (a_scale, b_scale) = (
-        largest(&ca).map(|m| scale_of(m).1),
-        largest(&cb).map(|m| scale_of(m).1),
-    );
+    let ((a_exp, a_scale), (b_exp, b_scale)) = (scales(&ca), scales(&cb));
     let poly = Poly::from_scaled(ca.map(|x| x * a_scale), cb.map(|x| x * b_scale));
     let t0 = b.sqrt() / (a.sqrt() + b.sqrt());
     let switch = if ACCURATE {
@@ -123,52 +120,58 @@ fn eight<const ACCURATE: bool>(
     };
     let (t, iterations, predicted) = predict_lanes(&poly, t0, switch);
     let common = plain.and(factored).and(predicted);
+    let scalar = |k: usize| {
+        let (r12, q1, q2) = &pairs[k];
+        one::<ACCURATE>(r12, q1, q2)
+    };
     if !ACCURATE {
-        // Rational::f at the predictor's λ, with its scaling lane by lane.
-        let s = 1.0 - t;
-        let f = (s * t * poly.a_at(t, s) / poly.b_at(t, s)).to_array();
-        let (a_max, b_max) = (largest(&ca).to_array(), largest(&cb).to_array());
+        // Rational::f at the predictor's λ.
+        let f = poly.ratio(t, 1.0 - t).to_array();
         let t = t.to_array();
-        return std::array::from_fn(|k| {
-            if !common.get(k) {
-                let (r12, q1, q2) = &pairs[k];
-                return one::<false>(r12, q1, q2);
-            }
-            let exp = scale_of(a_max[k]).0 - scale_of(b_max[k]).0;
-            finish(0, ldexp(f[k], exp), t[k], Stop::Converged, iterations[k])
+        return std::array::from_fn(|k| match common.get(k) {
+            true => finish(
+                0,
+                ldexp(f[k], a_exp[k] - b_exp[k]),
+                t[k],
+                Stop::Converged,
+                iterations[k],
+            ),
+            false => scalar(k),
         });
     }
-    let inv_unit = largest(&cb).map(|m| 1.0 / pow2(scale_of(m).0));
+    let inv_unit = F::from_array(b_exp.map(|e| 1.0 / pow2(e)));
     let start = Start::new(&l1, &l2, &r, &q1, &q2, &parts.mixed, inv_unit);
-    let lanes = LanePairs {
-        r,
-        q1,
-        q2,
-        b: poly.b,
-        parts,
-        start,
+    let pair = Pair {
+        r: &r,
+        q1: &q1,
+        q2: &q2,
+        b: &poly.b,
+        parts: &parts,
+        start: &start,
     };
-    let (refined, accepted) = at_lanes(&lanes, t);
+    let (refined, accepted) = at_lanes(&pair, t);
+    let t = t.to_array();
     std::array::from_fn(|k| {
-        let (r12, q1, q2) = &pairs[k];
         if !common.get(k) {
-            return contact_function(r12, q1, q2);
+            return scalar(k);
         }
-        let (t, iterations) = (t.to_array()[k], iterations[k]);
         if accepted.get(k) {
-            if let Some((mu2, polished)) = finished(&refined[k], t, (0.0, 1.0)) {
-                return finish(0, mu2, polished, Stop::Converged, iterations + 1);
+            if let Some((mu2, polished)) = finished(&refined[k], t[k], (0.0, 1.0)) {
+                return finish(0, mu2, polished, Stop::Converged, iterations[k] + 1);
             }
         }
-        correct_further(r12, q1, q2, 0, t, iterations)
+        let (r12, q1, q2) = &pairs[k];
+        correct_further(r12, q1, q2, 0, t[k], iterations[k])
     })
 }
 
-/// The largest of a set of coefficients, lane by lane, as [`Rational::new`] takes it.
+/// [`Rational::new`]'s scaling of a set of coefficients, lane by lane: the exponents
+/// and the powers of two that bring each lane's largest coefficient into `[1, 2)`.
 #[inline(always)]
-fn largest<const N: usize>(c: &[F; N]) -> F {
+fn scales<const N: usize>(c: &[F; N]) -> ([i32; LANES], F) {
     let c = c.map(F::to_array);
-    F::from_fn(|k| c[1..].iter().fold(c[0][k], |m, x| m.max(x[k])))
+    let scale = std::array::from_fn(|k| scale_of(largest(&c.map(|x| x[k]))));
+    (scale.map(|s| s.0), F::from_array(scale.map(|s| s.1)))
 }
 
 /// [`predict`] in eight lanes: where each lane stops, its evaluations, and a mask clear
