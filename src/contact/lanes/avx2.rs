@@ -33,25 +33,22 @@ pub fn store(x: Raw) -> [f64; 8] {
     out
 }
 
-#[inline(always)]
-pub fn add(x: Raw, y: Raw) -> Raw {
-    both(|h| unsafe { _mm256_add_pd(x[h], y[h]) })
+/// `pub fn name(x, y)` as one intrinsic on each half.
+macro_rules! binary {
+    ($($name:ident => $intrinsic:ident $(::<$c:ident>)?),* $(,)?) => {$(
+        #[inline(always)]
+        pub fn $name(x: Raw, y: Raw) -> Raw {
+            both(|h| unsafe { $intrinsic$(::<$c>)?(x[h], y[h]) })
+        }
+    )*};
 }
 
-#[inline(always)]
-pub fn sub(x: Raw, y: Raw) -> Raw {
-    both(|h| unsafe { _mm256_sub_pd(x[h], y[h]) })
-}
-
-#[inline(always)]
-pub fn mul(x: Raw, y: Raw) -> Raw {
-    both(|h| unsafe { _mm256_mul_pd(x[h], y[h]) })
-}
-
-#[inline(always)]
-pub fn div(x: Raw, y: Raw) -> Raw {
-    both(|h| unsafe { _mm256_div_pd(x[h], y[h]) })
-}
+binary!(
+    add => _mm256_add_pd,
+    sub => _mm256_sub_pd,
+    mul => _mm256_mul_pd,
+    div => _mm256_div_pd,
+);
 
 #[inline(always)]
 pub fn mul_add(x: Raw, y: Raw, z: Raw) -> Raw {
@@ -75,21 +72,13 @@ pub fn neg(x: Raw) -> Raw {
     both(|h| unsafe { _mm256_xor_pd(_mm256_set1_pd(-0.0), x[h]) })
 }
 
-// Ordered, quiet comparisons: false where either side is NaN, as in Rust.
-#[inline(always)]
-pub fn lt(x: Raw, y: Raw) -> RawMask {
-    both(|h| unsafe { _mm256_cmp_pd::<_CMP_LT_OQ>(x[h], y[h]) })
-}
-
-#[inline(always)]
-pub fn le(x: Raw, y: Raw) -> RawMask {
-    both(|h| unsafe { _mm256_cmp_pd::<_CMP_LE_OQ>(x[h], y[h]) })
-}
-
-#[inline(always)]
-pub fn eq(x: Raw, y: Raw) -> RawMask {
-    both(|h| unsafe { _mm256_cmp_pd::<_CMP_EQ_OQ>(x[h], y[h]) })
-}
+// Ordered, quiet comparisons: false where either side is NaN, as in Rust. (Masks are
+// `Raw` too: all-ones or all-zeros lanes.)
+binary!(
+    lt => _mm256_cmp_pd::<_CMP_LT_OQ>,
+    le => _mm256_cmp_pd::<_CMP_LE_OQ>,
+    eq => _mm256_cmp_pd::<_CMP_EQ_OQ>,
+);
 
 #[inline(always)]
 pub fn select(m: RawMask, yes: Raw, no: Raw) -> Raw {

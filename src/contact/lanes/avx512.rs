@@ -25,25 +25,22 @@ pub fn store(x: Raw) -> [f64; 8] {
     out
 }
 
-#[inline(always)]
-pub fn add(x: Raw, y: Raw) -> Raw {
-    unsafe { _mm512_add_pd(x, y) }
+/// `pub fn name(x, y)` as one intrinsic.
+macro_rules! binary {
+    ($($name:ident => $intrinsic:ident $(::<$c:ident>)?: $out:ty),* $(,)?) => {$(
+        #[inline(always)]
+        pub fn $name(x: Raw, y: Raw) -> $out {
+            unsafe { $intrinsic$(::<$c>)?(x, y) }
+        }
+    )*};
 }
 
-#[inline(always)]
-pub fn sub(x: Raw, y: Raw) -> Raw {
-    unsafe { _mm512_sub_pd(x, y) }
-}
-
-#[inline(always)]
-pub fn mul(x: Raw, y: Raw) -> Raw {
-    unsafe { _mm512_mul_pd(x, y) }
-}
-
-#[inline(always)]
-pub fn div(x: Raw, y: Raw) -> Raw {
-    unsafe { _mm512_div_pd(x, y) }
-}
+binary!(
+    add => _mm512_add_pd: Raw,
+    sub => _mm512_sub_pd: Raw,
+    mul => _mm512_mul_pd: Raw,
+    div => _mm512_div_pd: Raw,
+);
 
 #[inline(always)]
 pub fn mul_add(x: Raw, y: Raw, z: Raw) -> Raw {
@@ -70,20 +67,11 @@ pub fn neg(x: Raw) -> Raw {
 }
 
 // Ordered, quiet comparisons: false where either side is NaN, as in Rust.
-#[inline(always)]
-pub fn lt(x: Raw, y: Raw) -> RawMask {
-    unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(x, y) }
-}
-
-#[inline(always)]
-pub fn le(x: Raw, y: Raw) -> RawMask {
-    unsafe { _mm512_cmp_pd_mask::<_CMP_LE_OQ>(x, y) }
-}
-
-#[inline(always)]
-pub fn eq(x: Raw, y: Raw) -> RawMask {
-    unsafe { _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(x, y) }
-}
+binary!(
+    lt => _mm512_cmp_pd_mask::<_CMP_LT_OQ>: RawMask,
+    le => _mm512_cmp_pd_mask::<_CMP_LE_OQ>: RawMask,
+    eq => _mm512_cmp_pd_mask::<_CMP_EQ_OQ>: RawMask,
+);
 
 #[inline(always)]
 pub fn select(m: RawMask, yes: Raw, no: Raw) -> Raw {
