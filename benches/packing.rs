@@ -8,8 +8,8 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use grainpack::io::scene::{GrainCount, Rotation, Scene};
 use grainpack::packing::sorted_turns;
+use grainpack::scene::{GrainCount, Rotation, Scene};
 use std::fmt::Write as _;
 
 /// The scaling runs kanapy's grains at this packing fraction (the 10⁵ goal).

@@ -11,9 +11,9 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use grainpack::io::scene::Scene;
 use grainpack::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill};
 use grainpack::packing::PackedGrain;
+use grainpack::scene::Scene;
 use std::time::Instant;
 
 const SCENE: &str = "configs/kanapy_elongated.toml";
@@ -42,7 +42,7 @@ fn main() {
         grains.len(),
         fraction(&grains, scene.domain.volume()),
         scene.domain.size,
-        if scene.domain.boundary == grainpack::io::scene::Boundary::Periodic { "periodic" } else { "reflecting" },
+        if scene.domain.boundary == grainpack::scene::Boundary::Periodic { "periodic" } else { "reflecting" },
     );
     report.push_str("| cells | fill | voxelise (s) | write_vti (s) | .vti size (MB) | grain_report (s) | matrix fraction | max / mean \\|volume deviation\\| | split grains | stray voxels | empty grains |\n");
     report.push_str("|---|---|---:|---:|---:|---:|---:|---|---:|---:|---:|\n");

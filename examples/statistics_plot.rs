@@ -10,10 +10,10 @@
 //! shrunk by 3 % and stretched by 5 %), only to show how the outline looks: they are not
 //! voxel measurements.
 
+use grainpack::contact::equivalent_diameter;
 use grainpack::io::plots::{axis_polar_angle, write_statistics_png, VoxelSample};
-use grainpack::io::report::stats::{aspect_ratio, equivalent_diameter, tilt_angle};
-use grainpack::io::scene::{Orientation, Scene};
 use grainpack::packing::PackedGrain;
+use grainpack::scene::{aspect_ratio, tilt_angle, Orientation, Scene};
 use std::path::PathBuf;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

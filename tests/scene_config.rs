@@ -4,9 +4,11 @@
 
 mod scene_support;
 
-use grainpack::io::scene::{
-    rotation_column, Axis, Boundary, Distribution, GrainCount, GrainSpec, Orientation, OutputSpec,
-    PackingParams, Rotation, Scene, SceneError, VonMises,
+use grainpack::contact::rotation_column;
+use grainpack::io::scene::SceneError;
+use grainpack::laws::{Distribution, VonMises, VonMisesCdf};
+use grainpack::scene::{
+    Axis, Boundary, GrainCount, GrainSpec, Orientation, OutputSpec, PackingParams, Rotation, Scene,
 };
 use scene_support::{assert_starts, scene_error as error};
 use std::f64::consts::PI;
@@ -503,6 +505,7 @@ fn sampled_statistics_match_the_requested_distributions() {
             law.mean()
         );
     }
+    let angle = VonMisesCdf::new(&angle);
     let ks = ks_distance(theta.clone(), |t| angle.cdf(t));
     assert!(ks < critical, "tilt: KS {ks} ≥ {critical}");
     assert!(theta.iter().all(|t| (0.0..=PI).contains(t)));
@@ -579,12 +582,12 @@ fn each_phase_gets_its_volume_share_within_one_grain() {
 
 #[test]
 fn von_mises_cdf_of_the_kanapy_tilt_is_symmetric_about_90_degrees() {
-    let law = VonMises {
+    let law = VonMisesCdf::new(&VonMises {
         mean: 0.5 * PI,
         kappa: 1.0,
         min: 0.0,
         max: PI,
-    };
+    });
     for t in [0.1, 0.5, 1.0, 1.5] {
         assert!((law.cdf(t) + law.cdf(PI - t) - 1.0).abs() < 1e-9);
     }
@@ -597,7 +600,7 @@ fn every_shipped_config_loads_and_samples() {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "toml") {
-            let scene = grainpack::io::scene::Scene::from_path(&path)
+            let scene = grainpack::scene::Scene::from_path(&path)
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             let grains = scene.sample_grains(&mut scene.rng()).unwrap();
             assert!(!grains.is_empty(), "{}", path.display());

@@ -3,7 +3,7 @@
 
 mod scene_support;
 
-use grainpack::io::scene::{
+use grainpack::scene::{
     OutputSpec, RveFill, RveSpec, Scene, VtkSpec, DEFAULT_RVE_CELLS, DEFAULT_VTK_RESOLUTION,
     MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
 };

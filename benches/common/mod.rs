@@ -45,10 +45,10 @@ pub fn update_section(path: &str, name: &str, text: &str) {
 /// grains and the seconds `pack` took (its final exact check included).
 #[allow(dead_code)] // not every bench packs
 pub fn pack_scene(
-    scene: &grainpack::io::scene::Scene,
+    scene: &grainpack::scene::Scene,
 ) -> (
     grainpack::packing::Packing,
-    Vec<grainpack::io::scene::GrainSpec>,
+    Vec<grainpack::scene::GrainSpec>,
     f64,
 ) {
     let specs = scene.sample_grains(&mut scene.rng()).unwrap();

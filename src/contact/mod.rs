@@ -19,13 +19,16 @@ mod perram_wertheim;
 mod prepared;
 pub mod rational;
 mod refine;
+mod rotation;
 mod scale;
 mod sym;
 #[cfg(test)]
 mod test_pairs;
 pub mod wang;
 
-pub use ellipsoid::{Ellipsoid, ShapeError, QUATERNION_NORM_TOL};
+pub use ellipsoid::{
+    ellipsoid_volume, equivalent_diameter, Ellipsoid, ShapeError, QUATERNION_NORM_TOL,
+};
 pub use error::ContactError;
 pub use geometry::{contact_geometry, contact_geometry_fast, ContactGeometry};
 pub use ldl::MIN_RELATIVE_PIVOT;
@@ -37,6 +40,7 @@ pub use perram_wertheim::{
 };
 pub use prepared::PreparedEllipsoid;
 pub use refine::REFINEMENT_TOL;
+pub use rotation::{rotation_column, rotation_matrix};
 pub(crate) use sym::dot;
 
 /// A vector in 3D: `[x, y, z]`.

@@ -9,7 +9,7 @@ use super::neighbours::Neighbours;
 use super::state::State;
 use super::{Counters, PackError, Progress, CONTACT_GAP};
 use crate::contact::dot;
-use crate::io::scene::{Boundary, Rotation};
+use crate::scene::{Boundary, Rotation};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 

@@ -17,8 +17,8 @@ use super::grains::turn_angle;
 use super::neighbours::relative;
 use super::state::State;
 use crate::contact::{contact_geometry_fast, dot, ContactGeometry, PreparedEllipsoid};
-use crate::io::scene::Boundary;
 use crate::octree::Pair;
+use crate::scene::Boundary;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 

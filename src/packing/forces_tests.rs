@@ -1,8 +1,8 @@
 //! Forces and torques against finite differences of the energy.
 
 use super::*;
-use crate::io::scene::{Domain, GrainSpec};
 use crate::packing::fire::rotate_by;
+use crate::scene::{Domain, GrainSpec};
 
 /// Central differences of an energy that is smooth near the test point: step
 /// 1e-6 of the lengths involved gives an error of about 1e-12 (truncation) +

@@ -1,6 +1,6 @@
 //! The packed state as it is written out.
 
-use crate::io::scene::GrainSpec;
+use crate::scene::GrainSpec;
 use std::fmt;
 
 /// One packed grain.

@@ -43,7 +43,7 @@ pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason}
 pub use neighbours::SKIN;
 pub use verify::{verify, Verification};
 
-use crate::io::scene::{Boundary, Rotation};
+use crate::scene::{Boundary, Rotation};
 use fire::{Fire, Outcome, Run};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -75,7 +75,7 @@ pub const RESTORE_STEPS: u64 = 200;
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
 
-use crate::io::scene::{Domain, GrainSpec, PackingParams};
+use crate::scene::{Domain, GrainSpec, PackingParams};
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 

@@ -4,8 +4,8 @@
 use super::grains::{turn_angle, turn_vector};
 use super::PackError;
 use crate::contact::{dot, Ellipsoid, PreparedEllipsoid};
-use crate::io::scene::{Boundary, Domain, GrainSpec, Rotation};
 use crate::octree::{BoxShape, Sphere};
+use crate::scene::{Boundary, Domain, GrainSpec, Rotation};
 use rayon::prelude::*;
 
 /// Everything about the grains at scale 1 (target sizes), and their centres.

@@ -1,7 +1,8 @@
 //! The loop as a whole, on small scenes.
 
 use super::*;
-use crate::io::scene::{rotation_column, Rotation, Scene};
+use crate::contact::rotation_column;
+use crate::scene::{Rotation, Scene};
 
 /// 150 spheroids of aspect ratio 1.5 asked to fill 0.75 of a periodic cube: more than
 /// any random packing holds, so the loop runs until it jams.

@@ -3,8 +3,8 @@
 
 use super::{PackError, PackedGrain};
 use crate::contact::{contact_function, Ellipsoid};
-use crate::io::scene::{Boundary, Domain};
 use crate::octree::{BoxShape, Octree, Params, Sphere};
+use crate::scene::{Boundary, Domain};
 use rayon::prelude::*;
 
 /// What [`verify`] found.

@@ -1,6 +1,6 @@
 //! Helpers shared by the scene-file tests.
 
-use grainpack::io::scene::Scene;
+use grainpack::scene::Scene;
 
 /// The message of the error that the scene `text` must give.
 pub fn scene_error(text: &str) -> String {

@@ -3,9 +3,9 @@
 #![allow(dead_code)] // each test binary uses its own part
 
 use grainpack::contact::{overlaps, Ellipsoid};
-use grainpack::io::scene::{Boundary, Domain};
 use grainpack::io::voxel::VoxelGrid;
 use grainpack::packing::PackedGrain;
+use grainpack::scene::{Boundary, Domain};
 use nalgebra::{Matrix3, Vector3};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;

@@ -3,7 +3,7 @@
 use super::histogram::{aligned_bins, freedman_diaconis_bins, Histogram};
 use super::panel::{Panel, Row, Target};
 use super::{PlotError, COLUMNS, PANEL_WIDTH, TITLE_HEIGHT};
-use crate::io::report::stats::Moments;
+use crate::laws::Moments;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

@@ -5,7 +5,7 @@
 //! - **equivalent diameter** `2 (a1 a2 a3)^{1/3}` and **aspect ratio** `a1/a2`, measured
 //!   as `summary.json` measures them ([`equivalent_diameter`], [`aspect_ratio`]),
 //!   against the pdf of the law truncated and renormalised by its cutoffs
-//!   ([`Distribution::pdf`](crate::io::scene::Distribution::pdf));
+//!   ([`Distribution::pdf`](crate::scene::Distribution::pdf));
 //! - the **angle**: for a tilt orientation, the tilt angle ([`tilt_angle`]) against the
 //!   von Mises pdf; for any other orientation, the angle of the first semi-axis to z
 //!   ([`axis_polar_angle`]) against the isotropic density `sin θ` (random orientations)
@@ -17,13 +17,13 @@
 //! value. Voxel samples, when given, are drawn as a second histogram outline on the
 //! same bins. Legends give mean ± standard deviation.
 //!
-//! [`equivalent_diameter`]: crate::io::report::stats::equivalent_diameter
-//! [`aspect_ratio`]: crate::io::report::stats::aspect_ratio
-//! [`tilt_angle`]: crate::io::report::stats::tilt_angle
+//! [`equivalent_diameter`]: crate::laws::equivalent_diameter
+//! [`aspect_ratio`]: crate::laws::aspect_ratio
+//! [`tilt_angle`]: crate::laws::tilt_angle
 //!
 //! ```no_run
 //! use grainpack::io::plots::write_statistics_png;
-//! use grainpack::io::scene::Scene;
+//! use grainpack::scene::Scene;
 //! # fn packed() -> Vec<grainpack::packing::PackedGrain> { vec![] }
 //! let scene = Scene::from_path("configs/grains.toml".as_ref())?;
 //! write_statistics_png("out/statistics.png".as_ref(), &scene.phases, &packed(), None)?;
@@ -38,8 +38,8 @@ pub use histogram::{aligned_bins, freedman_diaconis_bins, Histogram, MAX_BINS, M
 pub use panel::axis_polar_angle;
 
 use crate::io::atomic::write_atomically;
-use crate::io::scene::Phase;
 use crate::packing::PackedGrain;
+use crate::scene::Phase;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
@@ -74,7 +74,7 @@ pub struct VoxelSample {
     /// the axis of revolution to z, in `[0, π/2]` (as [`axis_polar_angle`]). `None`
     /// when not measured (e.g. a grain too small to have an axis).
     ///
-    /// [`tilt_angle`]: crate::io::report::stats::tilt_angle
+    /// [`tilt_angle`]: crate::laws::tilt_angle
     pub tilt: Option<f64>,
 }
 

@@ -2,11 +2,10 @@
 //! target law they were drawn from.
 
 use super::{PlotError, VoxelSample};
-use crate::io::report::stats::{
-    aspect_ratio, equivalent_diameter, tilt_angle, Moments, VonMisesCdf,
-};
-use crate::io::scene::{rotation_column, Distribution, Orientation, Phase, VonMises};
+use crate::contact::{equivalent_diameter, rotation_column};
+use crate::laws::{Distribution, Moments, VonMises, VonMisesCdf};
 use crate::packing::PackedGrain;
+use crate::scene::{aspect_ratio, tilt_angle, Orientation, Phase};
 use std::f64::consts::PI;
 
 /// Points on a target density curve: at 400 points a curve over a 500-pixel axis has a
@@ -365,7 +364,7 @@ mod tests {
         let a = area(&distribution_target(&normal));
         assert!((a - 1.0).abs() < 1e-3, "{a}");
         let tilt = Orientation::Tilt {
-            axis: crate::io::scene::Axis::Z,
+            axis: crate::scene::Axis::Z,
             angle: VonMises::new(1.0, 1e6),
         };
         let a = area(&angle_panel(&tilt, &[]).target);

@@ -2,8 +2,9 @@
 //! outline exactly when voxel samples are given.
 
 use super::*;
-use crate::io::report::stats::{aspect_ratio, equivalent_diameter};
-use crate::io::scene::Scene;
+use crate::contact::equivalent_diameter;
+use crate::scene::aspect_ratio;
+use crate::scene::Scene;
 
 /// Two phases covering every kind of panel: a lognormal size, a constant aspect
 /// ratio, a tilt law and random orientations.

@@ -4,11 +4,11 @@
 
 use super::{OutputFiles, ReportError, Summary};
 use crate::contact::dot;
+use crate::contact::rotation_column;
 use crate::io::plots::{render_statistics_png, VoxelSample};
-use crate::io::report::stats::tilt_angle_of;
-use crate::io::scene::{rotation_column, Domain, Orientation, OutputSpec, Phase, RveFill};
 use crate::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill, VoxelReport};
 use crate::packing::PackedGrain;
+use crate::scene::{tilt_angle_of, Domain, Orientation, OutputSpec, Phase, RveFill};
 use serde::Serialize;
 use std::io;
 use std::time::Instant;

@@ -8,7 +8,7 @@
 //!
 //! ```no_run
 //! use grainpack::io::report::{write_outputs, RunInfo, Summary};
-//! use grainpack::io::scene::Scene;
+//! use grainpack::scene::Scene;
 //! use grainpack::packing::pack;
 //! use std::sync::atomic::AtomicBool;
 //! use std::time::Duration;
@@ -24,7 +24,6 @@
 //! ```
 
 mod derived;
-pub mod stats;
 mod summary;
 
 pub use derived::{
@@ -37,9 +36,9 @@ pub use summary::{
 
 use crate::io::atomic::write_atomically;
 use crate::io::cases::format_17;
-use crate::io::scene::Scene;
 use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
 use crate::packing::PackedGrain;
+use crate::scene::Scene;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 

@@ -1,13 +1,11 @@
 //! `summary.json`: the run's figures, and per phase the target statistics against
 //! those of the packed grains.
 
-use super::stats::{
-    aspect_ratio, equivalent_diameter, ks_distance, ks_distance_to_value, tilt_angle, Moments,
-    VonMisesCdf,
-};
-use crate::io::scene::GrainSpec;
-use crate::io::scene::{Boundary, Distribution, GrainCount, Orientation, Phase, Scene};
+use crate::contact::equivalent_diameter;
+use crate::laws::{ks_distance, ks_distance_to_value, Distribution, Moments, VonMisesCdf};
 use crate::packing::{sorted_turns, PackedGrain, Packing};
+use crate::scene::GrainSpec;
+use crate::scene::{aspect_ratio, tilt_angle, Boundary, GrainCount, Orientation, Phase, Scene};
 use serde::Serialize;
 use std::f64::consts::PI;
 use std::time::Duration;

@@ -80,31 +80,6 @@ pub enum SceneError {
     },
 }
 
-/// Why grains could not be drawn from a valid scene. Each case has a probability
-/// below e⁻⁵⁰ per draw, but is reported rather than looped on or ignored.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum SampleError {
-    /// Rejection sampling found no value inside the cutoffs.
-    #[error("phase {phase} ({name}): no {quantity} inside its cutoffs after {draws} draws")]
-    TooManyRejections {
-        /// Phase index.
-        phase: usize,
-        /// Phase name.
-        name: String,
-        /// `"equivalent diameter"`, `"aspect ratio"` or `"tilt angle"`.
-        quantity: &'static str,
-        /// Draws made.
-        draws: usize,
-    },
-    /// Reaching the target fraction took more grains than the limit.
-    #[error("more than {limit} grains were drawn without reaching the target fraction")]
-    TooManyGrains {
-        /// The limit.
-        limit: usize,
-    },
-}
-
 /// The text being validated and its name, to turn byte spans into error locations.
 pub(crate) struct Source<'a> {
     /// The file's name as given.

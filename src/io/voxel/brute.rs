@@ -3,8 +3,8 @@
 use super::geometry::{image_range, prepare, scaled_dist2, Lattice, REACH_SLACK};
 use super::raster::MARGIN_VOXELS;
 use super::{Fill, VoxelError, VoxelGrid};
-use crate::io::scene::Domain;
 use crate::packing::PackedGrain;
+use crate::scene::Domain;
 use rayon::prelude::*;
 
 /// What [`voxelise`](super::voxelise) computes, the slow and obvious way: for each voxel,

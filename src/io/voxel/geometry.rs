@@ -3,8 +3,8 @@
 
 use super::{Fill, VoxelError, VoxelGrid};
 use crate::contact::Ellipsoid;
-use crate::io::scene::{Boundary, Domain};
 use crate::packing::PackedGrain;
+use crate::scene::{Boundary, Domain};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 
 /// At most this many cells in all, so that every cell index fits a 32-bit signed

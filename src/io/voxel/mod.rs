@@ -49,7 +49,7 @@
 //! does not depend on the slabs or the thread count.
 //!
 //! ```
-//! use grainpack::io::scene::{Boundary, Domain};
+//! use grainpack::scene::{Boundary, Domain};
 //! use grainpack::io::voxel::{voxelise, Fill};
 //! use grainpack::packing::PackedGrain;
 //! let grain = PackedGrain {

@@ -2,8 +2,8 @@
 
 use super::geometry::{image_range, prepare, reach_bound, scaled_dist2, Form, Lattice, UNASSIGNED};
 use super::{Fill, VoxelError, VoxelGrid};
-use crate::io::scene::Domain;
 use crate::packing::PackedGrain;
+use crate::scene::Domain;
 use rayon::prelude::*;
 
 /// Each pass of `Fill::Grains` scales the grains by this factor more than the last. The

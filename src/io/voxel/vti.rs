@@ -26,7 +26,7 @@ const BLOCK_BYTES: usize = 1 << 20;
 /// condition there), in x-fastest order as VTK expects.
 ///
 /// ```
-/// use grainpack::io::scene::{Boundary, Domain};
+/// use grainpack::scene::{Boundary, Domain};
 /// use grainpack::io::voxel::{voxelise, write_vti, Fill};
 /// let domain = Domain { size: [1.0; 3], boundary: Boundary::Periodic };
 /// let grid = voxelise(&[], &domain, [2, 3, 4], Fill::Matrix, 1).unwrap();

@@ -15,7 +15,7 @@
 //!
 //! ```
 //! use grainpack::io::vtk::{write_centers_vtp, write_grains_vtu};
-//! use grainpack::io::scene::{Boundary, Domain, VtkSpec};
+//! use grainpack::scene::{Boundary, Domain, VtkSpec};
 //! use grainpack::packing::PackedGrain;
 //! let grain = PackedGrain {
 //!     id: 0,
@@ -41,7 +41,7 @@ pub use centers::{quadratic_form, shape_tensor, write_centers_vtp};
 pub use icosphere::Icosphere;
 pub use surfaces::{periodic_shifts, write_grains_vtu};
 
-use crate::io::scene::rotation_column;
+use crate::contact::rotation_column;
 use crate::packing::PackedGrain;
 use std::io::{self, Write};
 use vtkio::model::{ByteOrder, CellType, DataSet, Version, Vtk};

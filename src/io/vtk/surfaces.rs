@@ -2,9 +2,10 @@
 
 use super::icosphere::Icosphere;
 use super::{encode, grain_id, phase_index, rotation, TRIANGLE};
-use crate::io::report::stats::{aspect_ratio, equivalent_diameter};
-use crate::io::scene::{Boundary, Domain, VtkSpec};
+use crate::contact::equivalent_diameter;
 use crate::packing::PackedGrain;
+use crate::scene::aspect_ratio;
+use crate::scene::{Boundary, Domain, VtkSpec};
 use std::f64::consts::PI;
 use std::io::{self, Write};
 use vtkio::model::{

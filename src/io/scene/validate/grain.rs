@@ -1,11 +1,11 @@
 //! A phase's grain statistics: size and aspect-ratio distributions, and orientation.
 
 use crate::contact::QUATERNION_NORM_TOL;
-use crate::io::scene::distribution::{Distribution, Invalid};
 use crate::io::scene::error::{SceneError, Source};
-use crate::io::scene::orientation::{Axis, Orientation};
 use crate::io::scene::raw::{RawDistribution, RawFamily, RawKind, RawOrientation};
-use crate::io::scene::von_mises::VonMises;
+use crate::laws::VonMises;
+use crate::laws::{Distribution, Invalid};
+use crate::scene::{Axis, Orientation};
 use std::f64::consts::PI;
 use std::ops::Range;
 use toml::Spanned;

@@ -4,13 +4,12 @@
 mod grain;
 mod output;
 
-use super::distribution::Distribution;
 use super::error::{SceneError, Source};
-use super::orientation::Orientation;
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
-use super::{
-    mean_grain_volume, Boundary, Domain, GrainCount, PackingParams, Phase, Rotation, Scene,
-    MAX_GRAINS, MAX_TARGET_FRACTION,
+use crate::laws::Distribution;
+use crate::scene::{
+    mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase, Rotation,
+    Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;

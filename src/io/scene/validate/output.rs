@@ -2,12 +2,12 @@
 //! the box, and every key that cannot take effect rejected rather than ignored.
 
 use crate::io::scene::error::{SceneError, Source};
-use crate::io::scene::output::{
+use crate::io::scene::raw::{RawFill, RawOutput};
+use crate::scene::{
     proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
     MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION, MIN_VTK_RESOLUTION,
 };
-use crate::io::scene::raw::{RawFill, RawOutput};
-use crate::io::scene::{Boundary, Domain};
+use crate::scene::{Boundary, Domain};
 use std::path::PathBuf;
 use toml::Spanned;
 

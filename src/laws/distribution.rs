@@ -10,11 +10,11 @@ use rand_distr::StandardNormal;
 ///
 /// Every family is bounded, so that the largest grain is known before packing and every
 /// value is positive: `0 < min < max` (or `value > 0`). A validated
-/// [`Scene`](super::Scene) guarantees this and that the cutoffs keep at least
+/// [`Scene`](crate::scene::Scene) guarantees this and that the cutoffs keep at least
 /// [`MIN_ACCEPTED_MASS`] of the untruncated law.
 ///
 /// ```
-/// use grainpack::io::scene::Distribution;
+/// use grainpack::scene::Distribution;
 /// let d = Distribution::LogNormal { sigma: 0.8, scale: 14.0, loc: 0.0, min: 6.0, max: 16.0 };
 /// assert_eq!(d.support(), (6.0, 16.0));
 /// assert!(d.mean() > 6.0 && d.mean() < 16.0);
@@ -368,7 +368,7 @@ pub(crate) fn sample_laws() -> [Distribution; 5] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::scene::special::simpson;
+    use crate::laws::special::simpson;
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
 

@@ -27,11 +27,10 @@ const KAPPA_SERIES: f64 = 1e-5;
 /// window that can be drawn is [`VonMises::window`].
 ///
 /// ```
-/// use grainpack::io::scene::VonMises;
+/// use grainpack::laws::VonMises;
 /// use std::f64::consts::PI;
 /// let tilt = VonMises { mean: 0.5 * PI, kappa: 1.0, min: 0.0, max: PI };
 /// assert_eq!(tilt.window(), (0.0, PI));
-/// assert!((tilt.cdf(0.5 * PI) - 0.5).abs() < 1e-9);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VonMises {
@@ -66,7 +65,9 @@ impl VonMises {
         (self.kappa * ((theta - self.mean).cos() - 1.0)).exp()
     }
 
-    /// `∫ density` over `[a, b]`, on a grid fine enough to resolve the spread `1/√κ`.
+    /// `∫ density` over `[a, b]`, on a grid fine enough to resolve the spread `1/√κ`:
+    /// the normalisation of [`VonMises::pdf`] and of the accepted mass. The CDF is
+    /// [`VonMisesCdf`](super::VonMisesCdf).
     pub(super) fn integral(&self, a: f64, b: f64) -> f64 {
         if b <= a {
             return 0.0;
@@ -85,18 +86,6 @@ impl VonMises {
     pub fn accepted_mass(&self) -> f64 {
         let (lo, hi) = self.window();
         self.integral(lo, hi) / self.integral(self.mean - PI, self.mean + PI)
-    }
-
-    /// The CDF of the truncated law, by quadrature.
-    pub fn cdf(&self, theta: f64) -> f64 {
-        let (lo, hi) = self.window();
-        if theta <= lo {
-            return 0.0;
-        }
-        if theta >= hi {
-            return 1.0;
-        }
-        self.integral(lo, theta) / self.integral(lo, hi)
     }
 
     /// Draws one angle in the window: untruncated draws are rejected until one falls

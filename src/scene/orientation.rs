@@ -5,7 +5,8 @@
 //! grain's first axis (column 0) is its axis of revolution (see
 //! [`GrainSpec`](super::GrainSpec)).
 
-use super::von_mises::VonMises;
+use crate::contact::rotation_column;
+use crate::laws::VonMises;
 use rand::Rng;
 use std::f64::consts::PI;
 
@@ -145,26 +146,32 @@ fn canonical(q: [f64; 4]) -> [f64; 4] {
     }
 }
 
-/// Column `k` of the rotation matrix of the unit quaternion `q`.
-pub fn rotation_column(q: [f64; 4], k: usize) -> [f64; 3] {
-    let [w, x, y, z] = q;
-    match k {
-        0 => [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y + w * z),
-            2.0 * (x * z - w * y),
-        ],
-        1 => [
-            2.0 * (x * y - w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z + w * x),
-        ],
-        _ => [
-            2.0 * (x * z + w * y),
-            2.0 * (y * z - w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    }
+/// The tilt angle `θ` (radians) of a grain oriented by the unit quaternion `q`, for a
+/// tilt about `axis`: the angle of its first axis `e` (column 0 of the rotation) in the
+/// plane normal to `axis`, from the next coordinate axis `i` in cyclic order toward the
+/// one after, `j`: `θ = atan2(e_j, e_i)`. This inverts the scene's tilt orientation
+/// (for `axis = z`, `e = (cos θ, sin θ, 0)`).
+///
+/// The angle is returned in the law's window `[mean − π, mean + π]`, where the law's
+/// angles are drawn, by adding the multiple of 2π that brings it nearest the mean.
+///
+/// ```
+/// use grainpack::laws::tilt_angle;
+/// use grainpack::scene::{Axis, VonMises};
+/// let half = 0.3f64; // a rotation by 0.6 rad about z
+/// let q = [half.cos(), 0.0, 0.0, half.sin()];
+/// let theta = tilt_angle(q, Axis::Z, &VonMises::new(0.0, 1.0));
+/// assert!((theta - 0.6).abs() < 1e-15);
+/// ```
+pub fn tilt_angle(q: [f64; 4], axis: Axis, law: &VonMises) -> f64 {
+    tilt_angle_of(rotation_column(q, 0), axis, law)
+}
+
+/// [`tilt_angle`] of a first axis `e` given directly (a unit vector).
+pub fn tilt_angle_of(e: [f64; 3], axis: Axis, law: &VonMises) -> f64 {
+    let (i, j) = ((axis.index() + 1) % 3, (axis.index() + 2) % 3);
+    let theta = e[j].atan2(e[i]);
+    theta + 2.0 * PI * ((law.mean - theta) / (2.0 * PI)).round()
 }
 
 #[cfg(test)]
@@ -243,5 +250,48 @@ mod tests {
             assert!(m1[i].abs() < 5.0 * 0.0041, "{m1:?}");
             assert!((m2[i] - 1.0 / 3.0).abs() < 5.0 * 0.0021, "{m2:?}");
         }
+    }
+
+    /// The tilt quaternion of the scene, `rot(axis, θ) ⊗ p`, rebuilt here from the
+    /// rotation columns its docs give: θ must come back, in the law's window.
+    #[test]
+    fn tilt_angle_inverts_the_scene_tilt_for_every_axis() {
+        let law = VonMises {
+            mean: 0.5 * PI,
+            kappa: 1.0,
+            min: 0.0,
+            max: PI,
+        };
+        for axis in [Axis::X, Axis::Y, Axis::Z] {
+            for theta in [0.0, 0.3, 1.5, 3.0] {
+                let q = tilt_quaternion(axis, theta);
+                let back = tilt_angle(q, axis, &law);
+                // A few roundings in the quaternion and its rotation column.
+                assert!((back - theta).abs() < 1e-14, "{axis:?} {theta} {back}");
+            }
+        }
+        // Angles come back in [mean − π, mean + π].
+        let q = tilt_quaternion(Axis::Z, -0.25 * PI);
+        let back = tilt_angle(q, Axis::Z, &VonMises::new(PI, 1.0));
+        assert!((back - 1.75 * PI).abs() < 1e-14, "{back}");
+    }
+
+    /// `rot(axis, θ) ⊗ p` with `p` the cyclic permutation taking x, y, z to the next
+    /// axis, the one after and `axis` (documented in `docs/config.md`).
+    fn tilt_quaternion(axis: Axis, theta: f64) -> [f64; 4] {
+        let (s, c) = (0.5 * theta).sin_cos();
+        let mut r = [c, 0.0, 0.0, 0.0];
+        r[1 + axis.index()] = s;
+        let p = match axis {
+            Axis::Z => [1.0, 0.0, 0.0, 0.0],
+            Axis::X => [0.5, 0.5, 0.5, 0.5],
+            Axis::Y => [0.5, -0.5, -0.5, -0.5],
+        };
+        [
+            r[0] * p[0] - r[1] * p[1] - r[2] * p[2] - r[3] * p[3],
+            r[0] * p[1] + r[1] * p[0] + r[2] * p[3] - r[3] * p[2],
+            r[0] * p[2] - r[1] * p[3] + r[2] * p[0] + r[3] * p[1],
+            r[0] * p[3] + r[1] * p[2] - r[2] * p[1] + r[3] * p[0],
+        ]
     }
 }

@@ -1,10 +1,11 @@
 //! Drawing grains from a scene: which phase, what size, what shape, which way round.
 
-use super::error::SampleError;
 use super::{GrainCount, Orientation, Phase, Scene, MAX_GRAINS};
+use crate::laws::MAX_DRAWS;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
+use thiserror::Error;
 
 /// One grain as drawn, before packing: its target shape and orientation.
 ///
@@ -61,6 +62,42 @@ impl GrainSpec {
     }
 }
 
+/// The aspect ratio `a1/a2` of a packed spheroid: its first semi-axis (the axis of
+/// revolution) over its second (above 1 prolate, below 1 oblate).
+///
+/// ```
+/// use grainpack::scene::aspect_ratio;
+/// assert_eq!(aspect_ratio([3.0, 1.5, 1.5]), 2.0);
+/// ```
+pub fn aspect_ratio(semi_axes: [f64; 3]) -> f64 {
+    semi_axes[0] / semi_axes[1]
+}
+
+/// Why grains could not be drawn from a valid scene. Each case has a probability
+/// below e⁻⁵⁰ per draw, but is reported rather than looped on or ignored.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum SampleError {
+    /// Rejection sampling found no value inside the cutoffs.
+    #[error("phase {phase} ({name}): no {quantity} inside its cutoffs after {draws} draws")]
+    TooManyRejections {
+        /// Phase index.
+        phase: usize,
+        /// Phase name.
+        name: String,
+        /// `"equivalent diameter"`, `"aspect ratio"` or `"tilt angle"`.
+        quantity: &'static str,
+        /// Draws made.
+        draws: usize,
+    },
+    /// Reaching the target fraction took more grains than the limit.
+    #[error("more than {limit} grains were drawn without reaching the target fraction")]
+    TooManyGrains {
+        /// The limit.
+        limit: usize,
+    },
+}
+
 impl Phase {
     /// Draws one grain of this phase (`index` is the phase's index): diameter, then
     /// aspect ratio, then orientation.
@@ -73,7 +110,7 @@ impl Phase {
             phase: index,
             name: self.name.clone(),
             quantity,
-            draws: super::MAX_DRAWS,
+            draws: MAX_DRAWS,
         };
         let d = self
             .size

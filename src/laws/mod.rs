@@ -1,0 +1,32 @@
+//! The probability laws of a scene, in one place: the size and aspect-ratio families
+//! with their truncation ([`Distribution`]), the von Mises law of an angle
+//! ([`VonMises`], [`VonMisesCdf`]), their densities, CDFs and moments, and the sample
+//! statistics that compare packed grains with them ([`Moments`], [`ks_distance`]).
+//!
+//! The sampler (`scene`), the summary and the plots (`io`) all use these, so a law
+//! means the same thing wherever it appears.
+
+mod density;
+mod distribution;
+mod special;
+mod stats;
+mod von_mises;
+mod von_mises_cdf;
+
+#[cfg(test)]
+pub(crate) use distribution::sample_laws;
+pub use distribution::Distribution;
+pub(crate) use distribution::Invalid;
+pub use stats::{ks_distance, ks_distance_to_value, Moments};
+pub use von_mises::{VonMises, MAX_KAPPA};
+pub use von_mises_cdf::VonMisesCdf;
+
+/// The least share of a distribution its cutoffs must keep: below it the cutoffs
+/// "exclude essentially all the mass", and rejection sampling would need over 1000
+/// draws per value.
+pub const MIN_ACCEPTED_MASS: f64 = 1e-3;
+
+/// The most draws rejection sampling makes for one value. With acceptance at least
+/// [`MIN_ACCEPTED_MASS`] = 10⁻³, all 50 000 draws fail with probability
+/// `(1 − 10⁻³)^50 000 < e⁻⁵⁰`.
+pub const MAX_DRAWS: usize = 50_000;

@@ -1,0 +1,148 @@
+//! The scene as a model: the box, the phases and their grain laws, the packing
+//! parameters and what to write, as typed, validated values; and drawing grains
+//! from it ([`Scene::sample_grains`]).
+//!
+//! A scene is read from a TOML file by [`crate::io::scene`], which validates every
+//! value; nothing here parses text. The packing loop and the exports take what they
+//! need from it.
+//!
+//! ```
+//! use grainpack::scene::{GrainCount, Scene};
+//! let text = r#"
+//!     seed = 7
+//!     grains = 50
+//!     [box]
+//!     size = [40, 40, 40]
+//!     [[phase]]
+//!     name = "ferrite"
+//!     size = { distribution = "lognormal", sigma = 0.3, scale = 6, min = 3, max = 12 }
+//! "#;
+//! let scene = Scene::from_str(text, "example.toml").unwrap();
+//! assert_eq!(scene.count, GrainCount::Exactly(50));
+//! let grains = scene.sample_grains(&mut scene.rng()).unwrap();
+//! assert_eq!(grains.len(), 50);
+//! ```
+
+mod domain;
+mod grain;
+mod orientation;
+mod output;
+mod params;
+
+pub use domain::{Boundary, Domain};
+pub use grain::{aspect_ratio, GrainSpec, SampleError};
+pub use orientation::{tilt_angle, tilt_angle_of, Axis, Orientation};
+pub use output::{
+    proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
+    DEFAULT_VTK_RESOLUTION, MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
+    MIN_VTK_RESOLUTION,
+};
+pub use params::{PackingParams, Rotation};
+
+use crate::laws::Distribution;
+use std::f64::consts::PI;
+
+/// The largest `target_fraction` accepted, and the largest expected packing fraction
+/// of a `grains` count: 0.7707, the densest known packing of congruent ellipsoids
+/// (Donev et al., *Phys. Rev. Lett.* 92, 255506, 2004), denser than any sphere packing
+/// (0.7405). Random packings made by growth jam well below it (spheres ≈ 0.64,
+/// spheroids of aspect 1.5 ≈ 0.70–0.72), so a request above it cannot be met.
+pub const MAX_TARGET_FRACTION: f64 = 0.7707;
+
+/// The most grains a scene may ask for, exactly or expected from its target fraction
+/// (about 2 GB of grain state in the packing loop).
+pub const MAX_GRAINS: usize = 10_000_000;
+
+/// A validated scene: what to pack, into what, and what to write.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Seed of the random generator ([`Scene::rng`]).
+    pub seed: u64,
+    /// The box.
+    pub domain: Domain,
+    /// How many grains to draw.
+    pub count: GrainCount,
+    /// The phases, in file order (a grain's phase is its index here); at least one.
+    pub phases: Vec<Phase>,
+    /// Parameters of the packing loop.
+    pub packing: PackingParams,
+    /// What to write, and where.
+    pub output: OutputSpec,
+}
+
+/// How many grains a scene has.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GrainCount {
+    /// Exactly this many (`grains = N`).
+    Exactly(usize),
+    /// As many as it takes for their volumes to reach this fraction of the box
+    /// (`target_fraction = φ`): grains are drawn until their total volume first
+    /// reaches `φ·V`, so it exceeds `φ·V` by less than the last grain's volume.
+    Fraction(f64),
+}
+
+/// One phase: its share of the grain volume and its grain statistics.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Phase {
+    /// Name, unique within the scene.
+    pub name: String,
+    /// Share of the total grain volume, in `(0, 1]`; the shares sum to 1.
+    pub share: f64,
+    /// Equivalent-sphere diameter `d`: the grain's volume is `π d³/6`.
+    pub size: Distribution,
+    /// Aspect ratio `α = a1/a2` with `a2 = a3` (see [`GrainSpec`]).
+    pub aspect_ratio: Distribution,
+    /// How the grains are oriented.
+    pub orientation: Orientation,
+}
+
+impl Phase {
+    /// Expected volume of one grain, `π E[d³]/6`.
+    pub fn expected_volume(&self) -> f64 {
+        PI / 6.0 * self.size.moment(3)
+    }
+
+    /// The longest any grain can be end to end: `d_max · max(α_max^{2/3}, α_min^{−1/3})`
+    /// (the first axis `2a1 = d α^{2/3}` of a prolate grain, the equatorial diameter
+    /// `2a2 = d α^{−1/3}` of an oblate one).
+    pub fn max_length(&self) -> f64 {
+        let (_, d_max) = self.size.support();
+        let (a_min, a_max) = self.aspect_ratio.support();
+        d_max * a_max.powf(2.0 / 3.0).max(a_min.powf(-1.0 / 3.0))
+    }
+}
+
+/// `1 / Σₚ (shareₚ / E[vₚ])`: see [`Scene::expected_grain_volume`].
+pub(crate) fn mean_grain_volume(phases: &[Phase]) -> f64 {
+    1.0 / phases
+        .iter()
+        .map(|p| p.share / p.expected_volume())
+        .sum::<f64>()
+}
+
+impl Scene {
+    /// Mean volume of a grain over all phases: grains are drawn so that each phase gets
+    /// its share of the volume, so this is `1 / Σₚ (shareₚ / E[vₚ])`.
+    pub fn expected_grain_volume(&self) -> f64 {
+        mean_grain_volume(&self.phases)
+    }
+
+    /// The expected number of grains (exact for [`GrainCount::Exactly`]).
+    pub fn expected_count(&self) -> f64 {
+        match self.count {
+            GrainCount::Exactly(n) => n as f64,
+            GrainCount::Fraction(f) => f * self.domain.volume() / self.expected_grain_volume(),
+        }
+    }
+
+    /// The expected packing fraction of the grains at full size (the target itself for
+    /// [`GrainCount::Fraction`], up to the last grain's overshoot).
+    pub fn expected_fraction(&self) -> f64 {
+        match self.count {
+            GrainCount::Exactly(n) => {
+                n as f64 * self.expected_grain_volume() / self.domain.volume()
+            }
+            GrainCount::Fraction(f) => f,
+        }
+    }
+}

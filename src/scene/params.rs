@@ -1,0 +1,61 @@
+//! The parameters of the packing loop a scene sets (`[packing]`).
+
+/// Parameters of the packing loop, with defaults a user rarely changes
+/// (`[packing]` in the scene file). The loop documents how it uses each.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PackingParams {
+    /// Step limit: the loop stops with the reason "step limit" after this many FIRE
+    /// steps in all. Default 100 000.
+    pub max_steps: u64,
+    /// When the target cannot be reached, the loop bisects the scale between the best
+    /// overlap-free one and the smallest jammed one until they are this close
+    /// (relative). In `(0, 0.1]`; default 10⁻³ (0.3 % of packing fraction).
+    pub jam_resolution: f64,
+    /// Whether and how grains may turn while packing. Default [`Rotation::None`]:
+    /// orientations stay as drawn, as the scene's statistics ask.
+    pub rotation: Rotation,
+    /// The most a grain may turn away from its drawn orientation, in radians, in
+    /// `(0, π]`. Default π: no limit.
+    pub max_turn: f64,
+    /// Whether grains that may turn are turned back toward their drawn orientations,
+    /// as far as their neighbours let them, once packed at the target. Default true.
+    pub restore: bool,
+}
+
+impl Default for PackingParams {
+    fn default() -> Self {
+        Self {
+            max_steps: 100_000,
+            jam_resolution: 1e-3,
+            rotation: Rotation::None,
+            max_turn: std::f64::consts::PI,
+            restore: true,
+        }
+    }
+}
+
+/// How grains may turn while packing (`packing.rotation`). Turning lets a jammed
+/// packing grow denser, at the price of orientations that are no longer the drawn ones:
+/// the summary reports how far grains turned.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rotation {
+    /// Orientations stay as drawn (`false`).
+    None,
+    /// Grains turn freely (`true`).
+    Free,
+    /// Grains of a tilt phase turn only about its tilt axis, so that their first axis
+    /// stays in the plane the scene puts it in; other grains keep their orientation
+    /// (`"axis"`).
+    Axis,
+}
+
+impl Rotation {
+    /// The value as `summary.json` names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Free => "free",
+            Self::Axis => "axis",
+        }
+    }
+}
