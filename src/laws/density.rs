@@ -16,7 +16,7 @@ impl Distribution {
     /// `+∞` at `value` and 0 elsewhere.
     ///
     /// ```
-    /// use grainpack::scene::Distribution;
+    /// use grainpack::laws::Distribution;
     /// let d = Distribution::Uniform { min: 2.0, max: 6.0 };
     /// assert_eq!((d.pdf(3.0), d.pdf(7.0)), (0.25, 0.0));
     /// ```
@@ -54,7 +54,7 @@ impl VonMises {
     /// [`VonMisesCdf::cdf`](super::VonMisesCdf::cdf)), 0 outside the window.
     ///
     /// ```
-    /// use grainpack::scene::VonMises;
+    /// use grainpack::laws::VonMises;
     /// use std::f64::consts::PI;
     /// // κ = 0 is uniform on its window.
     /// let flat = VonMises { mean: 0.5 * PI, kappa: 0.0, min: 0.0, max: PI };

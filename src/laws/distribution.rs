@@ -14,7 +14,7 @@ use rand_distr::StandardNormal;
 /// [`MIN_ACCEPTED_MASS`] of the untruncated law.
 ///
 /// ```
-/// use grainpack::scene::Distribution;
+/// use grainpack::laws::Distribution;
 /// let d = Distribution::LogNormal { sigma: 0.8, scale: 14.0, loc: 0.0, min: 6.0, max: 16.0 };
 /// assert_eq!(d.support(), (6.0, 16.0));
 /// assert!(d.mean() > 6.0 && d.mean() < 16.0);

@@ -156,8 +156,9 @@ fn canonical(q: [f64; 4]) -> [f64; 4] {
 /// angles are drawn, by adding the multiple of 2π that brings it nearest the mean.
 ///
 /// ```
-/// use grainpack::laws::tilt_angle;
-/// use grainpack::scene::{Axis, VonMises};
+/// use grainpack::scene::tilt_angle;
+/// use grainpack::laws::VonMises;
+/// use grainpack::scene::Axis;
 /// let half = 0.3f64; // a rotation by 0.6 rad about z
 /// let q = [half.cos(), 0.0, 0.0, half.sin()];
 /// let theta = tilt_angle(q, Axis::Z, &VonMises::new(0.0, 1.0));

@@ -3,8 +3,9 @@
 use crate::cli::SceneArgs;
 use crate::exit::{Exit, Failure};
 use anyhow::{anyhow, Context};
-use grainpack::io::report::{create_dir, write_outputs, RunInfo, Summary};
-use grainpack::packing::{pack, PackError, Packing, Progress, StopReason};
+use grainpack::io::report::{create_dir, write_outputs};
+use grainpack::packing::{Progress, StopReason};
+use grainpack::run::{RunError, RunOptions};
 use grainpack::scene::{OutputSpec, Scene};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
@@ -26,25 +27,11 @@ const PROGRESS_INTERVAL: Duration = Duration::from_millis(50);
 /// Runs a scene: bad input is exit code 2 (nothing written), a target not reached is
 /// 3 (the best overlap-free state written), anything else that fails is 1.
 pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
-    let start = Instant::now();
     let name = path.display().to_string();
     let mut scene = Scene::from_path(path).map_err(Failure::bad_input)?;
-    if let Some(seed) = options.seed {
-        scene.seed = seed;
-    }
     if let Some(dir) = &options.out {
         scene.output.dir.clone_from(dir);
     }
-    if let Some(n) = options.threads {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n.get())
-            .build_global()
-            .with_context(|| format!("cannot start {n} threads"))?;
-    }
-    let threads = rayon::current_num_threads();
-    let specs = scene
-        .sample_grains(&mut scene.rng())
-        .with_context(|| format!("{name}: cannot draw the grains"))?;
     // Made before packing, so that a directory that cannot be made fails at once
     // rather than after a long run; removed again if nothing is written to it.
     let new_dir = prepare_dir(&scene.output)?;
@@ -55,60 +42,44 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     })
     .context("cannot install the Ctrl-C handler")?;
 
-    let mut bar = Bar::new(options.quiet, specs.len());
-    let started = Instant::now();
-    let result = pack(
-        &specs,
-        &scene.domain,
-        &scene.packing,
-        scene.seed,
-        &STOP,
-        &mut |p| bar.update(p),
+    let mut bar = Bar::new(options.quiet, scene.expected_count().round() as usize);
+    let mut progress = |p: &Progress| bar.update(p);
+    let result = grainpack::run::run(
+        &scene,
+        RunOptions {
+            seed: options.seed,
+            threads: options.threads,
+            progress: Some(&mut progress),
+            interrupt: Some(&STOP),
+        },
     );
-    let packing_time = started.elapsed();
     bar.finish();
-    let checked = result
-        .map_err(|e| pack_failure(e, &name))
-        .and_then(|packing| {
-            if packing.verification.is_clean() {
-                Ok(packing)
-            } else {
-                Err(not_clean(&packing).into())
-            }
-        });
-    let packing = match checked {
-        Ok(packing) => packing,
-        Err(failure) => {
+    let result = match result {
+        Ok(result) => result,
+        Err(error) => {
             if let Some(dir) = new_dir {
                 // Only an empty directory is removed; failing to is harmless.
                 let _ = std::fs::remove_dir(dir);
             }
-            return Err(failure);
+            return Err(run_failure(error, &name));
         }
     };
-
-    let run = RunInfo {
-        threads,
-        packing: packing_time,
-        total: start.elapsed(),
-    };
-    let mut summary = Summary::new(&scene, &specs, &packing, &run);
-    let written =
-        write_outputs(&scene, &packing.grains, &mut summary).map_err(anyhow::Error::from)?;
-    let wrote = describe(&written);
+    let written = write_outputs(&scene, &result).map_err(anyhow::Error::from)?;
+    let wrote = describe(&written.files);
+    let (packing, statistics) = (&result.packing, &result.statistics);
     if !options.quiet {
         eprintln!(
             "pack: {} grains, packing fraction {:.4} (target {:.4}), {} after {} steps in \
              {:.2} s; {} pairs checked, none overlapping",
-            summary.grains,
-            summary.packing_fraction,
-            summary.target_fraction,
+            packing.grains.len(),
+            statistics.packing_fraction,
+            statistics.target_fraction,
             packing.stop,
             packing.counters.steps,
-            packing_time.as_secs_f64(),
-            summary.checked_pairs,
+            result.timings.packing.as_secs_f64(),
+            packing.verification.checked_pairs,
         );
-        let r = &summary.rotation;
+        let r = &statistics.rotation;
         if r.mode != "none" {
             eprintln!(
                 "pack: grains turned from their drawn orientations by a median of {:.1}° \
@@ -128,8 +99,8 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
          fraction {:.4} of {:.4}) is kept; {wrote}",
         why(packing.stop, &scene),
         packing.scale,
-        summary.packing_fraction,
-        summary.full_size_fraction,
+        statistics.packing_fraction,
+        statistics.full_size_fraction,
     );
     Ok(Exit::NotReached)
 }
@@ -144,26 +115,14 @@ fn prepare_dir(output: &OutputSpec) -> Result<Option<PathBuf>, Failure> {
     Ok(Some(dir.clone()))
 }
 
-/// A packing error: the validated scene's grains always pack, so any error is
-/// internal.
-fn pack_failure(error: PackError, name: &str) -> Failure {
-    anyhow!(error)
-        .context(format!("{name}: the packing failed"))
-        .into()
-}
-
-/// The error for a packing that failed its final check: never written.
-fn not_clean(packing: &Packing) -> anyhow::Error {
-    let v = &packing.verification;
-    anyhow!(
-        "the packing failed its final overlap check ({} overlapping pairs, {} wall \
-         violations, {} grains meeting their own image; min μ² = {:e}); nothing is \
-         written. This is a bug: please report it with the scene and seed",
-        v.overlapping_pairs,
-        v.wall_violations,
-        v.self_images,
-        v.min_mu2,
-    )
+/// A failed run, as the user reads it: errors of this scene are prefixed with its
+/// file name. Each is internal (exit code 1): a validated scene always packs.
+fn run_failure(error: RunError, name: &str) -> Failure {
+    match error {
+        RunError::Sample(_) | RunError::Pack(_) => anyhow!(error).context(name.to_owned()),
+        _ => anyhow!(error),
+    }
+    .into()
 }
 
 /// Why the loop stopped short, in words.

@@ -1,8 +1,8 @@
 //! The outputs derived from the packed grains: the voxel RVE (`rve.vti`, its per-grain
 //! table `rve_grains.csv` and `sections.png`) and the statistics figure
-//! (`statistics.png`). The RVE's totals go into the summary.
+//! (`statistics.png`). The RVE's totals are returned for the summary.
 
-use super::{OutputFiles, ReportError, Summary};
+use super::{OutputFiles, ReportError};
 use crate::contact::dot;
 use crate::contact::rotation_column;
 use crate::io::plots::{render_statistics_png, VoxelSample};
@@ -69,17 +69,16 @@ impl RveSummary {
     }
 }
 
-/// Writes the RVE files and the statistics figure asked for by `output`, and records
-/// the RVE's totals in `summary.rve`.
+/// Writes the RVE files and the statistics figure asked for by `output`; returns the
+/// RVE's totals when one was written.
 pub fn write_derived(
     output: &OutputSpec,
     phases: &[Phase],
     domain: &Domain,
     grains: &[PackedGrain],
-    summary: &mut Summary,
     files: &mut OutputFiles,
-) -> Result<(), ReportError> {
-    let mut samples = None;
+) -> Result<Option<RveSummary>, ReportError> {
+    let (mut samples, mut summary) = (None, None);
     if let Some(rve) = &output.rve {
         let fill = match rve.fill {
             RveFill::Grains => Fill::Grains,
@@ -99,7 +98,7 @@ pub fn write_derived(
                 .map_err(|e| files.error(SECTIONS_PNG, io::Error::other(e)))?;
             files.record(path);
         }
-        summary.rve = Some(RveSummary::new(&report, grains.len(), seconds));
+        summary = Some(RveSummary::new(&report, grains.len(), seconds));
         samples = Some(voxel_samples(&report, grains, phases));
     }
     if output.statistics_png {
@@ -107,7 +106,7 @@ pub fn write_derived(
             render_statistics_png(w, phases, grains, samples.as_deref()).map_err(io::Error::other)
         })?;
     }
-    Ok(())
+    Ok(summary)
 }
 
 /// `id,phase,voxels,voxel_volume,ellipsoid_volume,volume_deviation,pieces,stray_voxels`.

@@ -7,19 +7,14 @@
 //! written last.
 //!
 //! ```no_run
-//! use grainpack::io::report::{write_outputs, RunInfo, Summary};
+//! use grainpack::io::report::write_outputs;
+//! use grainpack::run::{run, RunOptions};
 //! use grainpack::scene::Scene;
-//! use grainpack::packing::pack;
-//! use std::sync::atomic::AtomicBool;
-//! use std::time::Duration;
 //!
 //! let scene = Scene::from_path("configs/grains.toml".as_ref())?;
-//! let specs = scene.sample_grains(&mut scene.rng())?;
-//! let stop = AtomicBool::new(false);
-//! let packing = pack(&specs, &scene.domain, &scene.packing, scene.seed, &stop, &mut |_| {})?;
-//! let run = RunInfo { threads: 1, packing: Duration::ZERO, total: Duration::ZERO };
-//! let mut summary = Summary::new(&scene, &specs, &packing, &run);
-//! write_outputs(&scene, &packing.grains, &mut summary)?;
+//! let result = run(&scene, RunOptions::default())?;
+//! let written = write_outputs(&scene, &result)?;
+//! println!("wrote {} files in {:.2} s", written.files.len(), written.seconds);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -30,14 +25,13 @@ pub use derived::{
     write_derived, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
 };
 
-pub use summary::{
-    CounterSummary, PhaseSummary, QuantitySummary, RunInfo, Share, Summary, TimingSummary,
-};
+pub use summary::{CounterSummary, Summary, TimingSummary};
 
 use crate::io::atomic::write_atomically;
 use crate::io::cases::format_17;
 use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
 use crate::packing::PackedGrain;
+use crate::run::RunResult;
 use crate::scene::Scene;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -107,18 +101,26 @@ pub fn write_summary_json(out: &mut dyn Write, summary: &Summary) -> io::Result<
     out.write_all(b"\n")
 }
 
-/// Creates `output.dir` if needed and writes the files `output` enables, each to a
-/// temporary name renamed when complete, in this order: [`GRAINS_CSV`],
-/// [`GRAINS_VTU`], [`CENTERS_VTP`], the outputs of [`write_derived`], and
-/// [`SUMMARY_JSON`] last, so that a summary means the other files are complete.
-/// Returns the paths written.
-pub fn write_outputs(
-    scene: &Scene,
-    grains: &[PackedGrain],
-    summary: &mut Summary,
-) -> Result<Vec<PathBuf>, ReportError> {
+/// What [`write_outputs`] wrote.
+#[derive(Debug, Clone)]
+pub struct Written {
+    /// The paths written, in order.
+    pub files: Vec<PathBuf>,
+    /// How well the voxel RVE renders the grains, when one was written.
+    pub rve: Option<RveSummary>,
+    /// Seconds spent writing everything before `summary.json`.
+    pub seconds: f64,
+}
+
+/// Creates `scene.output.dir` if needed and writes the files `scene.output` enables
+/// for `result`, each to a temporary name renamed when complete, in this order:
+/// [`GRAINS_CSV`], [`GRAINS_VTU`], [`CENTERS_VTP`], the outputs of
+/// [`write_derived`], and [`SUMMARY_JSON`] last, so that a summary means the other
+/// files are complete.
+pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, ReportError> {
     let started = std::time::Instant::now();
     let (output, domain) = (&scene.output, &scene.domain);
+    let grains = &result.packing.grains;
     if output.writes_anything() {
         create_dir(&output.dir)?;
     }
@@ -132,14 +134,17 @@ pub fn write_outputs(
     if output.centers {
         files.write(CENTERS_VTP, |w| write_centers_vtp(w, grains))?;
     }
-    write_derived(output, &scene.phases, domain, grains, summary, &mut files)?;
-    let outputs = started.elapsed().as_secs_f64();
-    summary.timings.outputs = outputs;
-    summary.timings.total += outputs;
+    let rve = write_derived(output, &scene.phases, domain, grains, &mut files)?;
+    let seconds = started.elapsed().as_secs_f64();
     if output.summary_json {
-        files.write(SUMMARY_JSON, |w| write_summary_json(w, summary))?;
+        let summary = Summary::new(scene, result, rve.as_ref(), seconds);
+        files.write(SUMMARY_JSON, |w| write_summary_json(w, &summary))?;
     }
-    Ok(files.into_written())
+    Ok(Written {
+        files: files.into_written(),
+        rve,
+        seconds,
+    })
 }
 
 /// The files written into one output directory, each atomically
