@@ -213,6 +213,17 @@ pub fn equivalent_diameter(semi_axes: [f64; 3]) -> f64 {
     2.0 * semi_axes.iter().product::<f64>().cbrt()
 }
 
+/// `(6 V / π)^⅓`: the diameter of the sphere of volume `V` (a voxel set's equivalent
+/// diameter, for instance).
+///
+/// ```
+/// use grainpack::contact::sphere_diameter;
+/// assert!((sphere_diameter(std::f64::consts::PI / 6.0) - 1.0).abs() < 1e-15);
+/// ```
+pub fn sphere_diameter(volume: f64) -> f64 {
+    (6.0 * volume / PI).cbrt()
+}
+
 fn check_finite(what: &'static str, value: f64) -> Result<(), ShapeError> {
     if value.is_finite() {
         Ok(())

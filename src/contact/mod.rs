@@ -27,7 +27,8 @@ mod test_pairs;
 pub mod wang;
 
 pub use ellipsoid::{
-    ellipsoid_volume, equivalent_diameter, Ellipsoid, ShapeError, QUATERNION_NORM_TOL,
+    ellipsoid_volume, equivalent_diameter, sphere_diameter, Ellipsoid, ShapeError,
+    QUATERNION_NORM_TOL,
 };
 pub use error::ContactError;
 pub use geometry::{contact_geometry, contact_geometry_fast, ContactGeometry};

@@ -75,8 +75,7 @@ impl BoxShape {
         let mut out = centre;
         for (x, &l) in out.iter_mut().zip(&self.lengths) {
             if !(0.0..l).contains(x) {
-                let w = x.rem_euclid(l); // slow (an fmod): only off the fast path
-                *x = if w >= l { 0.0 } else { w };
+                *x = wrap_coordinate(*x, l); // slow (an fmod): only off the fast path
             }
         }
         out
@@ -90,6 +89,24 @@ impl BoxShape {
             f64::from(image[1]) * self.lengths[1],
             f64::from(image[2]) * self.lengths[2],
         ]
+    }
+}
+
+/// `x` moved into `[0, l)` by a multiple of `l`: `x − l·floor(x/l)` (`f64::rem_euclid`),
+/// which leaves `x` in `[0, l)` bit-for-bit unchanged; a tiny negative `x` whose
+/// remainder rounds to `l` itself maps to `0`. The one periodic wrap of the crate.
+///
+/// ```
+/// use grainpack::octree::wrap_coordinate;
+/// assert_eq!(wrap_coordinate(-1e-20, 2.0), 0.0);
+/// assert_eq!(wrap_coordinate(2.5, 2.0), 0.5);
+/// ```
+pub fn wrap_coordinate(x: f64, l: f64) -> f64 {
+    let w = x.rem_euclid(l);
+    if w >= l {
+        0.0
+    } else {
+        w
     }
 }
 

@@ -72,7 +72,7 @@ mod neighbours;
 mod pairs;
 mod tree;
 
-pub use boundary::{spheres_intersect, Boundary, BoxShape};
+pub use boundary::{spheres_intersect, wrap_coordinate, Boundary, BoxShape};
 pub use brute::{brute_force_neighbours, brute_force_pairs};
 pub use error::{InvariantViolation, OctreeError};
 pub use pairs::PairStats;

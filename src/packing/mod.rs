@@ -75,6 +75,7 @@ pub const RESTORE_STEPS: u64 = 200;
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
 
+use crate::octree::OctreeError;
 use crate::scene::{Domain, GrainSpec, PackingParams};
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
@@ -145,7 +146,7 @@ pub enum PackError {
     },
     /// The box or the grains' bounding spheres were rejected by the broad phase.
     #[error("broad phase: {0}")]
-    Domain(String),
+    Domain(#[from] OctreeError),
     /// More grains than ids can name.
     #[error("{0} grains: at most 2^32 − 1 are supported")]
     TooMany(usize),

@@ -45,8 +45,7 @@ impl Neighbours {
             / state.len() as f64;
         self.skin = SKIN * scale * mean;
         state.spheres(scale, 0.5 * self.skin, &mut self.spheres);
-        let tree = Octree::build(&self.spheres, state.box_shape, Params::default())
-            .map_err(|e| PackError::Domain(e.to_string()))?;
+        let tree = Octree::build(&self.spheres, state.box_shape, Params::default())?;
         tree.pairs(&mut self.pairs);
         // A grain shorter than the box never meets its own image.
         self.pairs.retain(|p| p.i != p.j);

@@ -3,8 +3,8 @@
 
 use super::grains::{turn_angle, turn_vector};
 use super::PackError;
-use crate::contact::{dot, Ellipsoid, PreparedEllipsoid};
-use crate::octree::{BoxShape, Sphere};
+use crate::contact::{dot, ellipsoid_volume, Ellipsoid, PreparedEllipsoid};
+use crate::octree::{wrap_coordinate, BoxShape, Sphere};
 use crate::scene::{Boundary, Domain, GrainSpec, Rotation};
 use rayon::prelude::*;
 
@@ -43,11 +43,7 @@ impl State {
         if specs.len() >= u32::MAX as usize {
             return Err(PackError::TooMany(specs.len()));
         }
-        let box_shape = match domain.boundary {
-            Boundary::Periodic => BoxShape::periodic(domain.size),
-            Boundary::Reflecting => BoxShape::reflecting(domain.size),
-        }
-        .map_err(|e| PackError::Domain(e.to_string()))?;
+        let box_shape = domain.box_shape()?;
         let n = specs.len();
         let mut state = Self {
             centres: vec![[0.0; 3]; n],
@@ -69,9 +65,7 @@ impl State {
         };
         for (id, spec) in specs.iter().enumerate() {
             let (shape, widths) = state.shape_of(id, spec.quaternion)?;
-            state
-                .volumes
-                .push(4.0 / 3.0 * std::f64::consts::PI * spec.semi_axes.iter().product::<f64>());
+            state.volumes.push(ellipsoid_volume(spec.semi_axes));
             state.max_bounding_radius = state.max_bounding_radius.max(shape.bounding_radius());
             state.shapes.push(shape);
             state.half_widths.push(widths);
@@ -164,13 +158,7 @@ impl State {
         for c in &mut self.centres {
             for k in 0..3 {
                 c[k] = if periodic {
-                    // rem_euclid can round up to L itself.
-                    let x = c[k].rem_euclid(size[k]);
-                    if x >= size[k] {
-                        0.0
-                    } else {
-                        x
-                    }
+                    wrap_coordinate(c[k], size[k])
                 } else {
                     c[k].clamp(0.0, size[k])
                 };

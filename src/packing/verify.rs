@@ -3,7 +3,7 @@
 
 use super::{PackError, PackedGrain};
 use crate::contact::{contact_function, Ellipsoid};
-use crate::octree::{BoxShape, Octree, Params, Sphere};
+use crate::octree::{Octree, Params, Sphere};
 use crate::scene::{Boundary, Domain};
 use rayon::prelude::*;
 
@@ -52,13 +52,7 @@ pub fn verify(grains: &[PackedGrain], domain: &Domain) -> Result<Verification, P
             radius: g.semi_axes.iter().fold(0.0f64, |m, &a| m.max(a)),
         })
         .collect();
-    let shape = match domain.boundary {
-        Boundary::Periodic => BoxShape::periodic(domain.size),
-        Boundary::Reflecting => BoxShape::reflecting(domain.size),
-    }
-    .map_err(|e| PackError::Domain(e.to_string()))?;
-    let tree = Octree::build(&spheres, shape, Params::default())
-        .map_err(|e| PackError::Domain(e.to_string()))?;
+    let tree = Octree::build(&spheres, domain.box_shape()?, Params::default())?;
     let mut pairs = Vec::new();
     tree.pairs(&mut pairs);
     // A grain against its own image: the bounding spheres only say it may.

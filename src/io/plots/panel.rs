@@ -2,7 +2,7 @@
 //! target law they were drawn from.
 
 use super::{PlotError, VoxelSample};
-use crate::contact::{equivalent_diameter, rotation_column};
+use crate::contact::{ellipsoid_volume, equivalent_diameter, rotation_column};
 use crate::laws::{Distribution, Moments, VonMises, VonMisesCdf};
 use crate::packing::PackedGrain;
 use crate::scene::{aspect_ratio, tilt_angle, Orientation, Phase};
@@ -116,7 +116,7 @@ pub(super) fn rows(
             phases: phases.len(),
         });
     }
-    let total_volume: f64 = packed.iter().map(grain_volume).sum();
+    let total_volume: f64 = packed.iter().map(|g| ellipsoid_volume(g.semi_axes)).sum();
     Ok(phases
         .iter()
         .enumerate()
@@ -124,7 +124,7 @@ pub(super) fn rows(
             let grains: Vec<&PackedGrain> = packed.iter().filter(|g| g.phase == index).collect();
             let samples: Option<Vec<&VoxelSample>> =
                 voxel.map(|v| v.iter().filter(|s| s.phase == index).collect());
-            let volume: f64 = grains.iter().map(|g| grain_volume(g)).sum();
+            let volume: f64 = grains.iter().map(|g| ellipsoid_volume(g.semi_axes)).sum();
             let mut title = format!(
                 "phase {} \u{201c}{}\u{201d}: {} packed grains, {:.1} % of the grain volume \
                  (target {:.1} %)",
@@ -178,11 +178,6 @@ pub(super) fn rows(
             }
         })
         .collect())
-}
-
-/// `(4π/3) a1 a2 a3`.
-fn grain_volume(g: &PackedGrain) -> f64 {
-    4.0 / 3.0 * PI * g.semi_axes.iter().product::<f64>()
 }
 
 /// The density curve of a law, or its value for a constant.

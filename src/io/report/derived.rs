@@ -3,8 +3,7 @@
 //! (`statistics.png`). The RVE's totals are returned for the summary.
 
 use super::{OutputFiles, ReportError};
-use crate::contact::dot;
-use crate::contact::rotation_column;
+use crate::contact::{dot, rotation_column, sphere_diameter};
 use crate::io::plots::{render_statistics_png, VoxelSample};
 use crate::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill, VoxelReport};
 use crate::packing::PackedGrain;
@@ -181,7 +180,7 @@ fn voxel_samples(
             Some(VoxelSample {
                 phase: g.phase,
                 // A sphere of the voxel volume: (6V/π)^(1/3).
-                equivalent_diameter: (6.0 * v.voxel_volume / std::f64::consts::PI).cbrt(),
+                equivalent_diameter: sphere_diameter(v.voxel_volume),
                 aspect_ratio: a1 / a2,
                 tilt,
             })

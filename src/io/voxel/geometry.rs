@@ -2,10 +2,11 @@
 //! `t²` from the same numbers in the same order and agree to the last bit.
 
 use super::{Fill, VoxelError, VoxelGrid};
-use crate::contact::Ellipsoid;
+use crate::contact::{rotation_matrix, Ellipsoid};
+use crate::octree::wrap_coordinate;
 use crate::packing::PackedGrain;
 use crate::scene::{Boundary, Domain};
-use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
 /// At most this many cells in all, so that every cell index fits a 32-bit signed
 /// integer (VTK readers built with 32-bit ids, Fortran default integers).
@@ -146,15 +147,12 @@ pub(super) fn prepare(
                     phases,
                 });
             }
-            let [w, x, y, z] = g.quaternion;
-            let rot = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z))
-                .to_rotation_matrix()
-                .into_inner();
+            let rot = rotation_matrix(g.quaternion);
             let inv = Vector3::from(g.semi_axes.map(|a| 1.0 / (a * a)));
             let p: Matrix3<f64> = rot * Matrix3::from_diagonal(&inv) * rot.transpose();
             let q = ellipsoid.q;
             let centre = if lattice.periodic {
-                [0, 1, 2].map(|a| wrap(g.centre[a], lattice.size[a]))
+                [0, 1, 2].map(|a| wrap_coordinate(g.centre[a], lattice.size[a]))
             } else {
                 g.centre
             };
@@ -174,17 +172,6 @@ pub(super) fn prepare(
             })
         })
         .collect()
-}
-
-/// `x` moved into `[0, l)` by a multiple of `l`.
-fn wrap(x: f64, l: f64) -> f64 {
-    let w = x.rem_euclid(l);
-    // rem_euclid of a tiny negative x rounds to l itself.
-    if w >= l {
-        0.0
-    } else {
-        w
-    }
 }
 
 /// Relative slack on [`reach_bound`]: it only has to absorb the rounding of `t`, a few ε.
@@ -273,9 +260,9 @@ mod tests {
         // Two routes to Q⁻¹ (inverting Q, or R diag(1/a²) Rᵀ), each good to a few ε·cond.
         assert!((got - want).abs() < 1e-12 * want, "{got} vs {want}");
         // At the tip of each semi-axis (column k of R, length a_k), t = 1.
-        let r = UnitQuaternion::from_quaternion(Quaternion::new(0.5, 0.5, -0.5, 0.5));
+        let r = rotation_matrix([0.5, 0.5, -0.5, 0.5]);
         for (k, a) in g.semi_axes.iter().enumerate() {
-            let tip = r.to_rotation_matrix().matrix().column(k) * *a;
+            let tip = r.column(k) * *a;
             let t2 = scaled_dist2(&form.p, [tip[0], tip[1], tip[2]]);
             assert!((t2 - 1.0).abs() < 1e-14, "semi-axis {k}: t² = {t2}");
         }

@@ -78,6 +78,7 @@ mod vti;
 pub use brute::brute_force_voxelise;
 pub use error::VoxelError;
 pub use geometry::MAX_CELLS;
+pub use moments::VoxelShape;
 pub use raster::{voxelise, GROWTH, MARGIN_VOXELS, ROW_ROUNDING};
 pub use report::{grain_report, GrainVoxels, VoxelReport};
 pub use sections::write_sections_png;

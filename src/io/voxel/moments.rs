@@ -1,11 +1,35 @@
 //! Exact second moments of each grain's voxels, summed run by run.
 
-use super::report::{equivalent_diameter, VoxelShape};
 use super::runs::Runs;
 use super::VoxelGrid;
+use crate::contact::{rotation_matrix, sphere_diameter};
 use crate::packing::PackedGrain;
-use nalgebra::{Matrix3, Quaternion, SymmetricEigen, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 use rayon::prelude::*;
+use serde::Serialize;
+
+/// The solid ellipsoid with the same volume centroid and second moments as a voxel
+/// grain (each voxel a uniform cube, so its own moment `h²/12` is included).
+///
+/// A solid ellipsoid's covariance has eigenvalues `a_k² / 5`, so `a_k = √(5 λ_k)`.
+/// Voxels are unwrapped around the grain centre (nearest image, per axis): a grain
+/// whose voxels span more than half the box along an axis is not unwrapped correctly.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct VoxelShape {
+    /// `(6 V / π)^⅓` of the voxel volume.
+    pub equivalent_diameter: f64,
+    /// Semi-axes `√(5 λ_k)`, largest first.
+    pub semi_axes: [f64; 3],
+    /// Unit principal directions: `axes[k]` goes with `semi_axes[k]`.
+    pub axes: [[f64; 3]; 3],
+    /// `semi_axes[0] / semi_axes[2]`.
+    pub aspect_ratio: f64,
+    /// Angle in degrees (0–90) between the major axes of the voxel grain and of the
+    /// ellipsoid; meaningless for a grain with two equal largest semi-axes.
+    pub major_axis_angle_deg: f64,
+    /// Distance from the voxel centroid to the grain's centre.
+    pub centroid_offset: f64,
+}
 
 /// Exact integer moments of one grain's unwrapped voxel indices, so that the parallel
 /// sum is the same in any order.
@@ -86,7 +110,7 @@ impl Moments {
         let major = ellipsoid_major_axis(g);
         let cos = (0..3).map(|a| axes[0][a] * major[a]).sum::<f64>().abs();
         Some(VoxelShape {
-            equivalent_diameter: equivalent_diameter(volume),
+            equivalent_diameter: sphere_diameter(volume),
             semi_axes,
             axes,
             aspect_ratio: semi_axes[0] / semi_axes[2],
@@ -98,12 +122,11 @@ impl Moments {
 
 /// The direction of the grain's largest semi-axis: that column of its rotation.
 fn ellipsoid_major_axis(g: &PackedGrain) -> [f64; 3] {
-    let [w, x, y, z] = g.quaternion;
-    let rot = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z)).to_rotation_matrix();
+    let rot = rotation_matrix(g.quaternion);
     let k = (0..3)
         .max_by(|&i, &j| g.semi_axes[i].total_cmp(&g.semi_axes[j]))
         .unwrap_or(0);
-    let v: Vector3<f64> = rot.matrix().column(k).into();
+    let v: Vector3<f64> = rot.column(k).into();
     [v[0], v[1], v[2]]
 }
 

@@ -1,15 +1,15 @@
 //! How faithfully the voxels render each grain: volume, pieces, and the ellipsoid of
 //! the same second moments.
 
-use super::moments::moments;
+use super::moments::{moments, VoxelShape};
 use super::pieces::count_pieces;
 use super::runs::Runs;
 use super::{Fill, VoxelError, VoxelGrid};
+use crate::contact;
 use crate::packing::PackedGrain;
 
 use rayon::prelude::*;
 use serde::Serialize;
-use std::f64::consts::PI;
 
 /// One grain as the voxels show it, next to the ellipsoid it came from.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -40,29 +40,6 @@ pub struct GrainVoxels {
     pub ellipsoid_aspect_ratio: f64,
     /// The voxel grain's shape from its moments; `None` when it has no voxel.
     pub shape: Option<VoxelShape>,
-}
-
-/// The solid ellipsoid with the same volume centroid and second moments as a voxel
-/// grain (each voxel a uniform cube, so its own moment `h²/12` is included).
-///
-/// A solid ellipsoid's covariance has eigenvalues `a_k² / 5`, so `a_k = √(5 λ_k)`.
-/// Voxels are unwrapped around the grain centre (nearest image, per axis): a grain
-/// whose voxels span more than half the box along an axis is not unwrapped correctly.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct VoxelShape {
-    /// `(6 V / π)^⅓` of the voxel volume.
-    pub equivalent_diameter: f64,
-    /// Semi-axes `√(5 λ_k)`, largest first.
-    pub semi_axes: [f64; 3],
-    /// Unit principal directions: `axes[k]` goes with `semi_axes[k]`.
-    pub axes: [[f64; 3]; 3],
-    /// `semi_axes[0] / semi_axes[2]`.
-    pub aspect_ratio: f64,
-    /// Angle in degrees (0–90) between the major axes of the voxel grain and of the
-    /// ellipsoid; meaningless for a grain with two equal largest semi-axes.
-    pub major_axis_angle_deg: f64,
-    /// Distance from the voxel centroid to the grain's centre.
-    pub centroid_offset: f64,
 }
 
 /// Every grain plus the totals.
@@ -111,7 +88,7 @@ pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelRep
         .zip(&pieces)
         .enumerate()
         .map(|(k, ((g, m), p))| {
-            let ellipsoid_volume = 4.0 / 3.0 * PI * g.semi_axes.iter().product::<f64>();
+            let ellipsoid_volume = contact::ellipsoid_volume(g.semi_axes);
             let voxel_volume = m.count as f64 * vv;
             let mut axes = g.semi_axes;
             axes.sort_by(|a, b| b.total_cmp(a));
@@ -125,7 +102,7 @@ pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelRep
                 volume_deviation: (voxel_volume - ellipsoid_volume) / ellipsoid_volume,
                 pieces: p.count,
                 stray_voxels: m.count - p.largest,
-                ellipsoid_equivalent_diameter: equivalent_diameter(ellipsoid_volume),
+                ellipsoid_equivalent_diameter: contact::sphere_diameter(ellipsoid_volume),
                 ellipsoid_semi_axes: axes,
                 ellipsoid_aspect_ratio: axes[0] / axes[2],
                 shape: m.shape(g, h, voxel_volume),
@@ -151,9 +128,4 @@ pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelRep
         ellipsoid_fraction: rows.iter().map(|r| r.ellipsoid_volume).sum::<f64>() / box_volume,
         grains: rows,
     })
-}
-
-/// `(6 V / π)^⅓`: the diameter of the sphere of volume `V`.
-pub(super) fn equivalent_diameter(volume: f64) -> f64 {
-    (6.0 * volume / PI).cbrt()
 }

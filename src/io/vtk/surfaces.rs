@@ -2,11 +2,10 @@
 
 use super::icosphere::Icosphere;
 use super::{encode, grain_id, phase_index, rotation, TRIANGLE};
-use crate::contact::equivalent_diameter;
+use crate::contact::{ellipsoid_volume, equivalent_diameter};
 use crate::packing::PackedGrain;
 use crate::scene::aspect_ratio;
 use crate::scene::{Boundary, Domain, VtkSpec};
-use std::f64::consts::PI;
 use std::io::{self, Write};
 use vtkio::model::{
     Attribute, Attributes, Cells, DataSet, IOBuffer, UnstructuredGridPiece, VertexNumbers,
@@ -107,7 +106,6 @@ pub fn write_grains_vtu(
     let mut data = CellData::default();
     for g in grains {
         let (id, phase) = (grain_id(g)?, phase_index(g)?);
-        let product: f64 = g.semi_axes.iter().product();
         let mut copies = vec![[0.0; 3]];
         if spec.periodic_images {
             copies.extend(periodic_shifts(g, domain));
@@ -118,7 +116,7 @@ pub fn write_grains_vtu(
             data.grain_id.extend(std::iter::repeat_n(id, n));
             data.phase.extend(std::iter::repeat_n(phase, n));
             data.volume
-                .extend(std::iter::repeat_n(4.0 / 3.0 * PI * product, n));
+                .extend(std::iter::repeat_n(ellipsoid_volume(g.semi_axes), n));
             data.equivalent_diameter
                 .extend(std::iter::repeat_n(equivalent_diameter(g.semi_axes), n));
             data.aspect_ratio
