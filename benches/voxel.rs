@@ -11,8 +11,9 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use grainpack::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill};
+use grainpack::io::voxel::{grain_report, voxelise, write_sections_png, write_vti};
 use grainpack::packing::PackedGrain;
+use grainpack::scene::RveFill;
 use grainpack::scene::Scene;
 use std::time::Instant;
 
@@ -47,7 +48,7 @@ fn main() {
     report.push_str("| cells | fill | voxelise (s) | write_vti (s) | .vti size (MB) | grain_report (s) | matrix fraction | max / mean \\|volume deviation\\| | split grains | stray voxels | empty grains |\n");
     report.push_str("|---|---|---:|---:|---:|---:|---:|---|---:|---:|---:|\n");
     for n in [69, 256] {
-        for fill in [Fill::Matrix, Fill::Grains] {
+        for fill in [RveFill::Matrix, RveFill::Grains] {
             let cells = [n; 3];
             let t_vox = median(|| {
                 voxelise(&grains, &scene.domain, cells, fill, phases).unwrap();

@@ -4,8 +4,9 @@
 
 mod voxel_support;
 
-use grainpack::io::voxel::{brute_force_voxelise, grain_report, voxelise, Fill, VoxelError};
+use grainpack::io::voxel::{brute_force_voxelise, grain_report, voxelise, VoxelError};
 use grainpack::packing::PackedGrain;
+use grainpack::scene::RveFill;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use voxel_support::*;
@@ -19,8 +20,14 @@ fn sphere_voxel_volume_approaches_the_ball_volume() {
         let dev: Vec<f64> = [8, 16, 32, 64, 128]
             .iter()
             .map(|&n| {
-                let grid =
-                    voxelise(&[g], &domain([1.0; 3], periodic), [n; 3], Fill::Matrix, 2).unwrap();
+                let grid = voxelise(
+                    &[g],
+                    &domain([1.0; 3], periodic),
+                    [n; 3],
+                    RveFill::Matrix,
+                    2,
+                )
+                .unwrap();
                 let count = grid.material.iter().filter(|&&m| m == 0).count();
                 (count as f64 * grid.voxel_volume() - ball).abs() / ball
             })
@@ -38,8 +45,8 @@ fn fill_grains_leaves_nothing_unassigned_and_keeps_every_grain_interior() {
         let size = [1.0, 1.3, 0.9];
         let grains = random_packing(&mut rng, 25, size, periodic);
         let d = domain(size, periodic);
-        let full = voxelise(&grains, &d, [21, 26, 19], Fill::Grains, 2).unwrap();
-        let holes = voxelise(&grains, &d, [21, 26, 19], Fill::Matrix, 2).unwrap();
+        let full = voxelise(&grains, &d, [21, 26, 19], RveFill::Grains, 2).unwrap();
+        let holes = voxelise(&grains, &d, [21, 26, 19], RveFill::Matrix, 2).unwrap();
         let n = grains.len() as u32;
         let mut inside = 0;
         for v in 0..full.len() {
@@ -77,7 +84,14 @@ fn a_grain_on_a_corner_shows_in_all_eight_corners_of_a_periodic_box_only() {
     // inscribed sphere (0.15) of the grain.
     let g = grain(0, [0.02, 0.97, 0.01], [0.25, 0.2, 0.15], q.map(|x| x / n));
     for periodic in [true, false] {
-        let grid = voxelise(&[g], &domain([1.0; 3], periodic), [10; 3], Fill::Matrix, 1).unwrap();
+        let grid = voxelise(
+            &[g],
+            &domain([1.0; 3], periodic),
+            [10; 3],
+            RveFill::Matrix,
+            1,
+        )
+        .unwrap();
         let corners: Vec<u32> = (0..8)
             .map(|c| {
                 let i = [c & 1, (c >> 1) & 1, (c >> 2) & 1].map(|b| b * 9);
@@ -110,7 +124,7 @@ fn fast_voxeliser_matches_brute_force_exactly() {
         } else {
             [7, 22, 11]
         };
-        for fill in [Fill::Matrix, Fill::Grains] {
+        for fill in [RveFill::Matrix, RveFill::Grains] {
             let d = domain(size, periodic);
             let fast = voxelise(&grains, &d, cells, fill, 2).unwrap();
             let slow = brute_force_voxelise(&grains, &d, cells, fill, 2).unwrap();
@@ -131,10 +145,10 @@ fn ties_go_to_the_lower_material_number() {
     let b = grain(1, [0.8125, 0.5, 0.5], [0.125; 3], IDENTITY);
     let d = domain([1.0; 3], false);
     for grains in [[a, b], [b, a]] {
-        let grid = voxelise(&grains, &d, [8; 3], Fill::Grains, 2).unwrap();
+        let grid = voxelise(&grains, &d, [8; 3], RveFill::Grains, 2).unwrap();
         assert_eq!(
             grid,
-            brute_force_voxelise(&grains, &d, [8; 3], Fill::Grains, 2).unwrap()
+            brute_force_voxelise(&grains, &d, [8; 3], RveFill::Grains, 2).unwrap()
         );
         let first_is_a = grains[0].centre[0] < 0.5;
         for k in 0..8 {
@@ -155,19 +169,19 @@ fn the_result_does_not_depend_on_the_thread_count() {
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     let grains = random_grains(&mut rng, 12, [1.0; 3]);
     let d = domain([1.0; 3], true);
-    let many = voxelise(&grains, &d, [40, 30, 70], Fill::Grains, 2).unwrap();
+    let many = voxelise(&grains, &d, [40, 30, 70], RveFill::Grains, 2).unwrap();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
-    let one = pool.install(|| voxelise(&grains, &d, [40, 30, 70], Fill::Grains, 2).unwrap());
+    let one = pool.install(|| voxelise(&grains, &d, [40, 30, 70], RveFill::Grains, 2).unwrap());
     assert_eq!(many, one);
 }
 
 #[test]
 fn a_grain_cut_in_two_is_reported_as_two_pieces() {
     let g = grain(5, [0.5, 0.5, 0.5], [0.3, 0.2, 0.2], IDENTITY);
-    let mut grid = voxelise(&[g], &domain([1.0; 3], true), [20; 3], Fill::Matrix, 2).unwrap();
+    let mut grid = voxelise(&[g], &domain([1.0; 3], true), [20; 3], RveFill::Matrix, 2).unwrap();
     assert_eq!(grain_report(&grid, &[g]).unwrap().grains[0].pieces, 1);
     // Cut the layer x = 8 out of the grain: 0.4 < x < 0.45, left of the centre.
     let matrix = grid.matrix_material();
@@ -193,7 +207,7 @@ fn report_recovers_the_shape_of_a_well_resolved_ellipsoid_even_across_faces() {
     let q = q.map(|x| x / n);
     for centre in [[0.5, 0.5, 0.5], [0.02, 0.98, 0.5]] {
         let g = grain(0, centre, [0.3, 0.15, 0.1], q);
-        let grid = voxelise(&[g], &domain([1.0; 3], true), [80; 3], Fill::Matrix, 1).unwrap();
+        let grid = voxelise(&[g], &domain([1.0; 3], true), [80; 3], RveFill::Matrix, 1).unwrap();
         let report = grain_report(&grid, &[g]).unwrap();
         let r = &report.grains[0];
         let s = r.shape.as_ref().unwrap();
@@ -213,15 +227,15 @@ fn report_recovers_the_shape_of_a_well_resolved_ellipsoid_even_across_faces() {
 fn bad_input_gives_typed_errors_that_name_the_culprit() {
     let d = domain([1.0; 3], true);
     let g = grain(42, [0.5; 3], [0.1; 3], IDENTITY);
-    let err = voxelise(&[g], &d, [4, 0, 4], Fill::Matrix, 2).unwrap_err();
+    let err = voxelise(&[g], &d, [4, 0, 4], RveFill::Matrix, 2).unwrap_err();
     assert!(matches!(err, VoxelError::ZeroCells { axis: 1 }), "{err}");
-    let err = voxelise(&[g], &d, [4; 3], Fill::Matrix, 0).unwrap_err();
+    let err = voxelise(&[g], &d, [4; 3], RveFill::Matrix, 0).unwrap_err();
     assert!(err.to_string().contains("grain 42"), "{err}");
     let nan = PackedGrain {
         centre: [0.5, f64::NAN, 0.5],
         ..g
     };
-    let err = voxelise(&[nan], &d, [4; 3], Fill::Matrix, 2).unwrap_err();
+    let err = voxelise(&[nan], &d, [4; 3], RveFill::Matrix, 2).unwrap_err();
     assert!(
         matches!(err, VoxelError::NonFiniteCentre { id: 42, .. }),
         "{err}"
@@ -230,13 +244,13 @@ fn bad_input_gives_typed_errors_that_name_the_culprit() {
         semi_axes: [0.1, 0.0, 0.1],
         ..g
     };
-    let err = voxelise(&[flat], &d, [4; 3], Fill::Matrix, 2).unwrap_err();
+    let err = voxelise(&[flat], &d, [4; 3], RveFill::Matrix, 2).unwrap_err();
     assert!(matches!(err, VoxelError::Shape { id: 42, .. }), "{err}");
-    let err = voxelise(&[], &d, [4; 3], Fill::Grains, 2).unwrap_err();
+    let err = voxelise(&[], &d, [4; 3], RveFill::Grains, 2).unwrap_err();
     assert!(matches!(err, VoxelError::NoGrains), "{err}");
-    let err = voxelise(&[g], &d, [1 << 20, 1 << 20, 4], Fill::Matrix, 2).unwrap_err();
+    let err = voxelise(&[g], &d, [1 << 20, 1 << 20, 4], RveFill::Matrix, 2).unwrap_err();
     assert!(matches!(err, VoxelError::TooManyCells { .. }), "{err}");
-    let grid = voxelise(&[g], &d, [4; 3], Fill::Matrix, 2).unwrap();
+    let grid = voxelise(&[g], &d, [4; 3], RveFill::Matrix, 2).unwrap();
     let err = grain_report(&grid, &[g, g]).unwrap_err();
     assert!(
         matches!(err, VoxelError::GrainCountMismatch { grid: 1, given: 2 }),

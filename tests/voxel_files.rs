@@ -2,7 +2,8 @@
 
 mod voxel_support;
 
-use grainpack::io::voxel::{voxelise, write_sections_png, write_vti, Fill};
+use grainpack::io::voxel::{voxelise, write_sections_png, write_vti};
+use grainpack::scene::RveFill;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use voxel_support::*;
@@ -14,7 +15,14 @@ fn vti_decodes_to_the_grid() {
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let size = [1.0, 0.7, 1.1];
     let grains = random_grains(&mut rng, 9, size);
-    let grid = voxelise(&grains, &domain(size, true), [31, 23, 37], Fill::Matrix, 2).unwrap();
+    let grid = voxelise(
+        &grains,
+        &domain(size, true),
+        [31, 23, 37],
+        RveFill::Matrix,
+        2,
+    )
+    .unwrap();
     let mut out = Vec::new();
     write_vti(&grid, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
@@ -74,7 +82,7 @@ fn sections_png_is_written_whole() {
         &grains,
         &domain([1.0, 2.0, 1.5], true),
         [12, 24, 18],
-        Fill::Grains,
+        RveFill::Grains,
         2,
     )
     .unwrap();

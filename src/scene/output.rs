@@ -3,6 +3,7 @@
 //! Every key is validated once, in `validate::output`; the writers read these typed
 //! values and check nothing again. `docs/config.md` documents each key and default.
 
+use serde::Serialize;
 use std::path::PathBuf;
 
 /// Default subdivision level of the grain surfaces in `grains.vtu`: 320 triangles
@@ -138,7 +139,8 @@ impl RveSpec {
 }
 
 /// What the voxels of the RVE outside every grain become (`rve_fill`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum RveFill {
     /// `"grains"` (the default): every voxel belongs to a grain; the space between
     /// grains is shared out among them.

@@ -5,7 +5,7 @@
 use super::{OutputFiles, ReportError};
 use crate::contact::{dot, rotation_column, sphere_diameter};
 use crate::io::plots::{render_statistics_png, VoxelSample};
-use crate::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, Fill, VoxelReport};
+use crate::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, VoxelReport};
 use crate::packing::PackedGrain;
 use crate::scene::{tilt_angle_of, Domain, Orientation, OutputSpec, Phase, RveFill};
 use serde::Serialize;
@@ -28,7 +28,7 @@ pub struct RveSummary {
     /// Cells along x, y, z.
     pub cells: [usize; 3],
     /// `"grains"` or `"matrix"`.
-    pub fill: Fill,
+    pub fill: RveFill,
     /// Materials in `rve.vti`: one per grain (material k is grain k), plus the matrix
     /// (material = number of grains) when `fill = "matrix"`.
     pub materials: usize,
@@ -55,7 +55,7 @@ impl RveSummary {
         Self {
             cells: report.cells,
             fill: report.fill,
-            materials: grains + usize::from(report.fill == Fill::Matrix),
+            materials: grains + usize::from(report.fill == RveFill::Matrix),
             max_abs_volume_deviation: report.max_abs_volume_deviation,
             mean_abs_volume_deviation: report.mean_abs_volume_deviation,
             split_grains: report.split_grains.len(),
@@ -79,10 +79,7 @@ pub fn write_derived(
 ) -> Result<Option<RveSummary>, ReportError> {
     let (mut samples, mut summary) = (None, None);
     if let Some(rve) = &output.rve {
-        let fill = match rve.fill {
-            RveFill::Grains => Fill::Grains,
-            RveFill::Matrix => Fill::Matrix,
-        };
+        let fill = rve.fill;
         let start = Instant::now();
         let grid = voxelise(grains, domain, rve.cells, fill, phases.len())
             .map_err(|e| files.error(RVE_VTI, io::Error::other(e)))?;

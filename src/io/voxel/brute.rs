@@ -2,9 +2,10 @@
 
 use super::geometry::{image_range, prepare, scaled_dist2, Lattice, REACH_SLACK};
 use super::raster::MARGIN_VOXELS;
-use super::{Fill, VoxelError, VoxelGrid};
+use super::{VoxelError, VoxelGrid};
 use crate::packing::PackedGrain;
 use crate::scene::Domain;
+use crate::scene::RveFill;
 use rayon::prelude::*;
 
 /// What [`voxelise`](super::voxelise) computes, the slow and obvious way: for each voxel,
@@ -12,18 +13,18 @@ use rayon::prelude::*;
 /// (ties to the lower material number). Same arguments, same errors. For tests.
 ///
 /// "Within reach": the smallest `t` over all images is at most `u`, the smallest `t`
-/// over the grains' nearest images (in `Fill::Matrix` only `t ≤ 1` counts, so `u = 1`),
+/// over the grains' nearest images (in `RveFill::Matrix` only `t ≤ 1` counts, so `u = 1`),
 /// and an image farther than `u √Q_aa` along any axis has `t > u`.
 pub fn brute_force_voxelise(
     grains: &[PackedGrain],
     domain: &Domain,
     cells: [usize; 3],
-    fill: Fill,
+    fill: RveFill,
     phases: usize,
 ) -> Result<VoxelGrid, VoxelError> {
     let lat = Lattice::new(domain, cells)?;
     let forms = prepare(grains, &lat, phases)?;
-    if fill == Fill::Grains && forms.is_empty() {
+    if fill == RveFill::Grains && forms.is_empty() {
         return Err(VoxelError::NoGrains);
     }
     let [nx, ny, nz] = cells;
@@ -37,8 +38,8 @@ pub fn brute_force_voxelise(
                 lat.coord(2, v / (nx * ny)),
             ];
             let reach = match fill {
-                Fill::Matrix => 1.0,
-                Fill::Grains => forms
+                RveFill::Matrix => 1.0,
+                RveFill::Grains => forms
                     .iter()
                     .map(|f| {
                         let d = [0, 1, 2].map(|a| nearest(x[a] - f.centre[a], &lat, a));
@@ -68,7 +69,7 @@ pub fn brute_force_voxelise(
                     }
                 }
             }
-            if fill == Fill::Matrix && best > 1.0 {
+            if fill == RveFill::Matrix && best > 1.0 {
                 matrix
             } else {
                 winner

@@ -1,10 +1,11 @@
 //! What the fast and the brute-force voxelisers share, so that both compute every
 //! `t²` from the same numbers in the same order and agree to the last bit.
 
-use super::{Fill, VoxelError, VoxelGrid};
+use super::{VoxelError, VoxelGrid};
 use crate::contact::{rotation_matrix, Ellipsoid};
 use crate::octree::wrap_coordinate;
 use crate::packing::PackedGrain;
+use crate::scene::RveFill;
 use crate::scene::{Boundary, Domain};
 use nalgebra::{Matrix3, Vector3};
 
@@ -70,7 +71,7 @@ impl Lattice {
     /// The grid with its materials, phases filled in from `forms`.
     pub fn into_grid(
         self,
-        fill: Fill,
+        fill: RveFill,
         forms: &[Form],
         phases: usize,
         material: Vec<u32>,

@@ -11,9 +11,9 @@
 //! scaled by `t_g(x) = √((x − c)ᵀ Q⁻¹ (x − c))`: inside the grain `t ≤ 1`. In a periodic
 //! box `c` runs over all images `c + (kx Lx, ky Ly, kz Lz)`, so grains crossing a face
 //! appear on both sides and the fields are periodic; a reflecting box has no images.
-//! - [`Fill::Matrix`]: a voxel whose centre lies in a grain (`t ≤ 1`) is that grain's,
+//! - [`RveFill::Matrix`]: a voxel whose centre lies in a grain (`t ≤ 1`) is that grain's,
 //!   every other voxel is the matrix.
-//! - [`Fill::Grains`]: every voxel goes to the grain of smallest `t`, the one that must
+//! - [`RveFill::Grains`]: every voxel goes to the grain of smallest `t`, the one that must
 //!   be scaled least to reach it (a Voronoi tessellation in the grains' own metrics).
 //!
 //! In both modes a voxel inside several grains (only possible if they overlap) goes to
@@ -35,7 +35,7 @@
 //! (rayon), each on its own. A slab rasterises every grain image whose (scaled) bounding
 //! box meets it, row by row along x: on a row, `t²` is a quadratic in x, so the voxels
 //! with `t ≤ s` form an interval found in closed form, and only those are evaluated.
-//! `Fill::Matrix` is one pass at scale `s = 1`. `Fill::Grains` goes on with scales
+//! `RveFill::Matrix` is one pass at scale `s = 1`. `RveFill::Grains` goes on with scales
 //! growing by [`GROWTH`], each pass evaluating only the shell `s_prev < t ≤ s` of each
 //! grain, and only within the x-range of each row (and the block of the slab) that still
 //! holds undecided voxels. A voxel is decided after the pass at scale `s` once its best
@@ -50,14 +50,15 @@
 //!
 //! ```
 //! use grainpack::scene::{Boundary, Domain};
-//! use grainpack::io::voxel::{voxelise, Fill};
+//! use grainpack::io::voxel::voxelise;
+//! use grainpack::scene::RveFill;
 //! use grainpack::packing::PackedGrain;
 //! let grain = PackedGrain {
 //!     id: 0, phase: 0, centre: [0.0; 3], semi_axes: [3.0, 2.0, 2.0],
 //!     quaternion: [1.0, 0.0, 0.0, 0.0],
 //! };
 //! let domain = Domain { size: [10.0; 3], boundary: Boundary::Periodic };
-//! let grid = voxelise(&[grain], &domain, [10, 10, 10], Fill::Matrix, 1).unwrap();
+//! let grid = voxelise(&[grain], &domain, [10, 10, 10], RveFill::Matrix, 1).unwrap();
 //! // The grain sits on a corner: it shows in all eight corners of the periodic box.
 //! assert_eq!(grid.material[grid.index(0, 0, 0)], 0);
 //! assert_eq!(grid.material[grid.index(9, 9, 9)], 0);
@@ -84,17 +85,7 @@ pub use report::{grain_report, GrainVoxels, VoxelReport};
 pub use sections::write_sections_png;
 pub use vti::write_vti;
 
-use serde::Serialize;
-
-/// What fills the voxels that no grain contains.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Fill {
-    /// A matrix material (number `n`, phase `phases`) fills the gaps between grains.
-    Matrix,
-    /// The gaps go to the nearest grain in its own metric: grains fill the box.
-    Grains,
-}
+use crate::scene::RveFill;
 
 /// The voxel grid: a material and a phase number per cell, x fastest, then y, then z.
 #[derive(Debug, Clone, PartialEq)]
@@ -106,7 +97,7 @@ pub struct VoxelGrid {
     /// Whether the box (and so the field) is periodic.
     pub periodic: bool,
     /// How the gaps were filled.
-    pub fill: Fill,
+    pub fill: RveFill,
     /// Number of grains `n`: materials `0..n−1` are grains, `n` the matrix.
     pub grains: usize,
     /// Number of phases in the scene: the matrix is phase `phases`.

@@ -121,14 +121,14 @@ impl UnionFind {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::voxel::Fill;
+    use crate::scene::RveFill;
 
     fn grid(cells: [usize; 3], periodic: bool, material: Vec<u32>) -> VoxelGrid {
         VoxelGrid {
             cells,
             size: cells.map(|n| n as f64),
             periodic,
-            fill: Fill::Matrix,
+            fill: RveFill::Matrix,
             grains: 2,
             phases: 1,
             phase: vec![0; material.len()],

@@ -1,12 +1,13 @@
 //! The fast voxeliser: grains scattered onto z-slabs, row by row, in growing shells.
 
 use super::geometry::{image_range, prepare, reach_bound, scaled_dist2, Form, Lattice, UNASSIGNED};
-use super::{Fill, VoxelError, VoxelGrid};
+use super::{VoxelError, VoxelGrid};
 use crate::packing::PackedGrain;
 use crate::scene::Domain;
+use crate::scene::RveFill;
 use rayon::prelude::*;
 
-/// Each pass of `Fill::Grains` scales the grains by this factor more than the last. The
+/// Each pass of `RveFill::Grains` scales the grains by this factor more than the last. The
 /// work is the grains' volume at the final scale, which overshoots the largest `t` in
 /// the box by up to this factor; a smaller one costs more passes, each with a fixed
 /// cost per grain and row.
@@ -31,17 +32,17 @@ const TARGET_SLABS: usize = 64;
 /// the numbering.
 ///
 /// Fails on zero or too many cells, an invalid box, an invalid grain (shape, centre,
-/// phase ≥ `phases`), or `Fill::Grains` with no grain.
+/// phase ≥ `phases`), or `RveFill::Grains` with no grain.
 pub fn voxelise(
     grains: &[PackedGrain],
     domain: &Domain,
     cells: [usize; 3],
-    fill: Fill,
+    fill: RveFill,
     phases: usize,
 ) -> Result<VoxelGrid, VoxelError> {
     let lattice = Lattice::new(domain, cells)?;
     let forms = prepare(grains, &lattice, phases)?;
-    if fill == Fill::Grains && forms.is_empty() {
+    if fill == RveFill::Grains && forms.is_empty() {
         return Err(VoxelError::NoGrains);
     }
     let [nx, ny, nz] = cells;
@@ -59,16 +60,16 @@ pub fn voxelise(
     Ok(lattice.into_grid(fill, &forms, phases, material))
 }
 
-/// The scales of the passes: 1, then (for `Fill::Grains`) growing by [`GROWTH`] up to
+/// The scales of the passes: 1, then (for `RveFill::Grains`) growing by [`GROWTH`] up to
 /// a scale that reaches every voxel.
 #[derive(Debug, Clone, Copy)]
 struct Scales {
-    fill: Fill,
+    fill: RveFill,
     last: f64,
 }
 
 impl Scales {
-    fn new(fill: Fill, reach: f64) -> Self {
+    fn new(fill: RveFill, reach: f64) -> Self {
         Self {
             fill,
             last: reach.max(1.0),
@@ -78,9 +79,9 @@ impl Scales {
     /// The scale after `s`, or `None` when `s` was the last.
     fn next(&self, s: f64) -> Option<f64> {
         match self.fill {
-            Fill::Matrix => None,
-            Fill::Grains if s >= self.last => None,
-            Fill::Grains => Some((s * GROWTH).min(self.last)),
+            RveFill::Matrix => None,
+            RveFill::Grains if s >= self.last => None,
+            RveFill::Grains => Some((s * GROWTH).min(self.last)),
         }
     }
 }
@@ -134,7 +135,7 @@ impl<'a> Slab<'a> {
         }
     }
 
-    /// Runs the passes until every voxel is decided; for `Fill::Matrix`, one pass at
+    /// Runs the passes until every voxel is decided; for `RveFill::Matrix`, one pass at
     /// scale 1, after which every voxel outside all grains becomes `matrix`.
     fn fill(&mut self, forms: &[Form], scales: Scales, matrix: u32) -> Result<(), VoxelError> {
         let (mut prev, mut s) = (0.0, 1.0);
@@ -150,10 +151,10 @@ impl<'a> Slab<'a> {
         let s2 = s * s;
         let outside = self.best.iter().zip(self.material.iter_mut());
         match scales.fill {
-            Fill::Matrix => outside
+            RveFill::Matrix => outside
                 .filter(|(&b, _)| b > s2)
                 .for_each(|(_, m)| *m = matrix),
-            Fill::Grains => {
+            RveFill::Grains => {
                 let count = outside.filter(|(&b, _)| b > s2).count();
                 if count > 0 {
                     return Err(VoxelError::Unassigned { count, scale: s });
@@ -346,14 +347,14 @@ mod tests {
 
     #[test]
     fn scales_grow_to_the_last_and_stop_there() {
-        assert_eq!(Scales::new(Fill::Matrix, 10.0).next(1.0), None);
-        let s = Scales::new(Fill::Grains, 2.0);
+        assert_eq!(Scales::new(RveFill::Matrix, 10.0).next(1.0), None);
+        let s = Scales::new(RveFill::Grains, 2.0);
         let mut seq = vec![1.0];
         while let Some(next) = s.next(*seq.last().unwrap()) {
             seq.push(next);
         }
         assert_eq!(seq, [1.0, GROWTH, GROWTH * GROWTH, GROWTH.powi(3), 2.0]);
         // A bound below 1 still runs the pass at 1.
-        assert_eq!(Scales::new(Fill::Grains, 0.5).next(1.0), None);
+        assert_eq!(Scales::new(RveFill::Grains, 0.5).next(1.0), None);
     }
 }

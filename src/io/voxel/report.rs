@@ -4,9 +4,10 @@
 use super::moments::{moments, VoxelShape};
 use super::pieces::count_pieces;
 use super::runs::Runs;
-use super::{Fill, VoxelError, VoxelGrid};
+use super::{VoxelError, VoxelGrid};
 use crate::contact;
 use crate::packing::PackedGrain;
+use crate::scene::RveFill;
 
 use rayon::prelude::*;
 use serde::Serialize;
@@ -48,7 +49,7 @@ pub struct VoxelReport {
     /// Cells along x, y, z.
     pub cells: [usize; 3],
     /// How the gaps were filled.
-    pub fill: Fill,
+    pub fill: RveFill,
     /// Largest `|volume_deviation|` over the grains.
     pub max_abs_volume_deviation: f64,
     /// Mean `|volume_deviation|` over the grains.

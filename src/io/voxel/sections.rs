@@ -1,6 +1,7 @@
 //! Three orthogonal mid-sections of a voxel grid, as one PNG.
 
 use super::{VoxelError, VoxelGrid};
+use crate::scene::RveFill;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -75,8 +76,8 @@ fn draw(grid: &VoxelGrid, file: &Path) -> Result<(), VoxelError> {
     root.fill(&WHITE).map_err(|e| plot(&e))?;
     let [nx, ny, nz] = grid.cells;
     let fill = match grid.fill {
-        super::Fill::Matrix => "matrix",
-        super::Fill::Grains => "grains",
+        RveFill::Matrix => "matrix",
+        RveFill::Grains => "grains",
     };
     let title = format!(
         "Voxel RVE, {nx}×{ny}×{nz} cells, {} grains, fill = {fill}",

@@ -27,9 +27,10 @@ const BLOCK_BYTES: usize = 1 << 20;
 ///
 /// ```
 /// use grainpack::scene::{Boundary, Domain};
-/// use grainpack::io::voxel::{voxelise, write_vti, Fill};
+/// use grainpack::io::voxel::{voxelise, write_vti};
+/// use grainpack::scene::RveFill;
 /// let domain = Domain { size: [1.0; 3], boundary: Boundary::Periodic };
-/// let grid = voxelise(&[], &domain, [2, 3, 4], Fill::Matrix, 1).unwrap();
+/// let grid = voxelise(&[], &domain, [2, 3, 4], RveFill::Matrix, 1).unwrap();
 /// let mut out = Vec::new();
 /// write_vti(&grid, &mut out).unwrap();
 /// let text = String::from_utf8(out).unwrap();
