@@ -53,15 +53,41 @@ pub(crate) fn random_pairs(seed: u64, n: usize) -> Vec<(Pair, f64)> {
     (0..n).map(&mut one).collect()
 }
 
-/// The rows of a reference file in `tests/data`: each pair with its μ² and λ (50
-/// correct digits, rounded to doubles).
-pub(crate) fn reference_rows(name: &str) -> Vec<(crate::io::cases::Case, f64, f64)> {
+/// A pair of a reference file, in relative form.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ReferencePair {
+    /// Line in the file (the header is line 1).
+    pub line: u64,
+    pub r12: Vec3,
+    pub q1: Sym3,
+    pub q2: Sym3,
+}
+
+/// The rows of a reference file in `tests/data` (written by
+/// `tools/make_contact_reference.py`): each pair with its μ² and λ (50 correct digits,
+/// rounded to doubles). The contact layer reads them itself, with the csv crate, so that
+/// its tests need nothing from `io`.
+pub(crate) fn reference_rows(name: &str) -> Vec<(ReferencePair, f64, f64)> {
     let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
-    let table = crate::io::cases::CaseTable::read(std::fs::File::open(path).unwrap()).unwrap();
-    (0..table.rows.len())
-        .map(|i| {
-            let number = |column| table.number(i, column).unwrap();
-            (table.case(i).unwrap(), number("mu2"), number("lambda"))
+    let mut reader = csv::Reader::from_path(&path).unwrap();
+    let header = reader.headers().unwrap().clone();
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let r = ["r0", "r1", "r2"].map(column);
+    let q1 = ["q1_0", "q1_1", "q1_2", "q1_3", "q1_4", "q1_5"].map(column);
+    let q2 = ["q2_0", "q2_1", "q2_2", "q2_3", "q2_4", "q2_5"].map(column);
+    let (mu2, lambda) = (column("mu2"), column("lambda"));
+    reader
+        .records()
+        .map(|row| {
+            let row = row.unwrap();
+            let x = |k: usize| -> f64 { row[k].parse().unwrap() };
+            let pair = ReferencePair {
+                line: row.position().map_or(0, |p| p.line()),
+                r12: r.map(x),
+                q1: q1.map(x),
+                q2: q2.map(x),
+            };
+            (pair, x(mu2), x(lambda))
         })
         .collect()
 }

@@ -2,6 +2,7 @@
 
 use super::boundary::Aabb;
 use super::kernel::Lanes;
+use super::scratch::{Item, Scratch};
 use super::tree::Node;
 use super::{BoxShape, Octree, OctreeError, Params, Sphere, MAX_IMAGES_PER_AXIS};
 
@@ -198,22 +199,6 @@ fn leaf(start: u32, end: u32) -> Node {
         first_child: 0,
         child_count: 0,
     }
-}
-
-/// A sphere being sorted into tree order.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Item {
-    centre: [f64; 3],
-    radius: f64,
-    id: u32,
-}
-
-/// Buffers of the build, kept by the tree so that [`Octree::rebuild`] allocates nothing.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Scratch {
-    a: Vec<Item>,
-    b: Vec<Item>,
-    codes: Vec<u8>,
 }
 
 /// Working state of one build: the node array and the final sphere arrays being filled.

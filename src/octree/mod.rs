@@ -70,6 +70,7 @@ mod invariants;
 mod kernel;
 mod neighbours;
 mod pairs;
+mod scratch;
 mod tree;
 
 pub use boundary::{spheres_intersect, wrap_coordinate, Boundary, BoxShape};

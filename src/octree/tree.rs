@@ -1,8 +1,8 @@
 //! The tree itself: parameters, node layout and accessors.
 
 use super::boundary::Aabb;
-use super::build::Scratch;
 use super::kernel::Lanes;
+use super::scratch::Scratch;
 use super::{BoxShape, OctreeError};
 
 /// Largest number of periodic images a sphere may span along one axis,
@@ -127,7 +127,7 @@ pub struct Octree {
     /// Depth of the deepest node.
     pub(crate) depth: u32,
     /// Buffers reused by [`Octree::rebuild`].
-    pub(crate) scratch: Scratch,
+    pub(super) scratch: Scratch,
 }
 
 impl Octree {

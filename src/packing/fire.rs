@@ -5,6 +5,7 @@
 //! [`Forces`] at a fixed scale until the grains are apart.
 
 use super::forces::Forces;
+use super::grains::rotate_by;
 use super::neighbours::Neighbours;
 use super::state::State;
 use super::{Counters, PackError, Progress, CONTACT_GAP};
@@ -295,21 +296,4 @@ fn clamp_norm(v: &mut [f64; 3], limit: f64) {
         let f = limit / norm;
         v.iter_mut().for_each(|x| *x *= f);
     }
-}
-
-/// `exp(θ/2) ⊗ q`: `q` turned by the rotation vector `θ` (in the box frame), normalised.
-pub(crate) fn rotate_by(q: [f64; 4], theta: [f64; 3]) -> [f64; 4] {
-    let angle = dot(&theta, &theta).sqrt();
-    let (sin, cos) = (0.5 * angle).sin_cos();
-    // sin(θ/2)/θ, with its limit 1/2 at θ = 0.
-    let k = if angle > 0.0 { sin / angle } else { 0.5 };
-    let r = [cos, k * theta[0], k * theta[1], k * theta[2]];
-    let p = [
-        r[0] * q[0] - r[1] * q[1] - r[2] * q[2] - r[3] * q[3],
-        r[0] * q[1] + r[1] * q[0] + r[2] * q[3] - r[3] * q[2],
-        r[0] * q[2] - r[1] * q[3] + r[2] * q[0] + r[3] * q[1],
-        r[0] * q[3] + r[1] * q[2] - r[2] * q[1] + r[3] * q[0],
-    ];
-    let norm = p.iter().map(|x| x * x).sum::<f64>().sqrt();
-    p.map(|x| x / norm)
 }

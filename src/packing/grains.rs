@@ -1,5 +1,6 @@
 //! The packed state as it is written out.
 
+use crate::contact::dot;
 use crate::scene::GrainSpec;
 use std::fmt;
 
@@ -67,6 +68,23 @@ pub fn turn_angle(from: [f64; 4], to: [f64; 4]) -> f64 {
     (x * x + y * y + z * z).sqrt()
 }
 
+/// `exp(θ/2) ⊗ q`: `q` turned by the rotation vector `θ` (in the box frame), normalised.
+pub(super) fn rotate_by(q: [f64; 4], theta: [f64; 3]) -> [f64; 4] {
+    let angle = dot(&theta, &theta).sqrt();
+    let (sin, cos) = (0.5 * angle).sin_cos();
+    // sin(θ/2)/θ, with its limit 1/2 at θ = 0.
+    let k = if angle > 0.0 { sin / angle } else { 0.5 };
+    let r = [cos, k * theta[0], k * theta[1], k * theta[2]];
+    let p = [
+        r[0] * q[0] - r[1] * q[1] - r[2] * q[2] - r[3] * q[3],
+        r[0] * q[1] + r[1] * q[0] + r[2] * q[3] - r[3] * q[2],
+        r[0] * q[2] - r[1] * q[3] + r[2] * q[0] + r[3] * q[1],
+        r[0] * q[3] + r[1] * q[2] - r[2] * q[1] + r[3] * q[0],
+    ];
+    let norm = p.iter().map(|x| x * x).sum::<f64>().sqrt();
+    p.map(|x| x / norm)
+}
+
 /// How far each packed grain turned from its drawn orientation (`drawn[id]`), in
 /// radians, in increasing order.
 pub fn sorted_turns(drawn: &[GrainSpec], grains: &[PackedGrain]) -> Vec<f64> {
@@ -117,7 +135,6 @@ impl fmt::Display for StopReason {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::packing::fire::rotate_by;
 
     /// No turn is exactly no turn, and a turn by θ (applied in the box frame, as the
     /// loop does) comes back as θ to a few ε, both ways round, small or large.

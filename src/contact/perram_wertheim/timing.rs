@@ -2,16 +2,14 @@
 //! counts. Both are `#[ignore]`d: run them with `--ignored --nocapture`.
 
 use super::*;
-use crate::io::cases::{Case, CaseTable};
+use crate::contact::test_pairs::{reference_rows, ReferencePair as Case};
 use std::hint::black_box;
 
 fn typical_cases() -> Vec<Case> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/contact_typical.csv"
-    );
-    let t = CaseTable::read(std::fs::File::open(path).unwrap()).unwrap();
-    (0..t.rows.len()).map(|i| t.case(i).unwrap()).collect()
+    reference_rows("contact_typical.csv")
+        .into_iter()
+        .map(|(c, _, _)| c)
+        .collect()
 }
 
 type Stage<'a> = (&'a str, &'a dyn Fn(&Case) -> f64);

@@ -1,7 +1,7 @@
 //! Forces and torques against finite differences of the energy.
 
 use super::*;
-use crate::packing::fire::rotate_by;
+use crate::packing::grains::rotate_by;
 use crate::scene::{Domain, GrainSpec};
 
 /// Central differences of an energy that is smooth near the test point: step

@@ -332,5 +332,4 @@ fn fallback_direction(i: u32, j: u32) -> [f64; 3] {
 }
 
 #[cfg(test)]
-#[path = "forces_tests.rs"]
 mod tests;
