@@ -13,7 +13,8 @@ use quick_xml::Reader;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use support::{extent, files_in, read_grains, Grain};
+use support::files::{files_in, scratch};
+use support::packed::{extent, read_grains, Grain};
 
 /// A point's distance from its ellipsoid, in the ellipsoid's own units
 /// `|diag(1/a) Rᵀ (x − c)| − 1`: the writer and nalgebra build R from the quaternion
@@ -62,7 +63,7 @@ orientation = { kind = "aligned", axis = "z" }
 
 /// Runs `pack scene.toml --out out --quiet` in a fresh directory; returns `out`.
 fn pack(name: &str, scene: &str) -> PathBuf {
-    let dir = support::scratch("exports", name);
+    let dir = scratch("exports", name);
     std::fs::write(dir.join("scene.toml"), scene).unwrap();
     let run = Command::new(env!("CARGO_BIN_EXE_pack"))
         .args(["scene.toml", "--out", "out", "--quiet"])

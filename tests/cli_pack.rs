@@ -7,7 +7,8 @@ mod support;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use support::{check_overlaps, extent, files_in, read_grains, Grain};
+use support::files::files_in;
+use support::packed::{check_overlaps, extent, read_grains, Grain};
 
 fn pack_in(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_pack"))
@@ -19,7 +20,7 @@ fn pack_in(dir: &Path, args: &[&str]) -> Output {
 
 /// A fresh, empty directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    support::scratch("pack", name)
+    support::files::scratch("pack", name)
 }
 
 fn stderr(run: &Output) -> String {
@@ -271,7 +272,7 @@ fn check_written_packing(out: &Path, periodic: bool) -> (Vec<Grain>, Value) {
         let reported = number(&summary["min_mu2"]);
         assert!(reported >= 1.0, "{reported}");
         // Our golden-section μ² and the loop's exact one: both within 1e-13 of the
-        // truth (see support::MU2_TOL); 1e-9 relative is generous.
+        // truth (see support::packed::MU2_TOL); 1e-9 relative is generous.
         assert!(
             (reported - check.min_mu2).abs() <= 1e-9 * check.min_mu2,
             "summary {reported}, independent {}",

@@ -1,10 +1,10 @@
 //! The tree stays sound through builds and rebuilds, and wrapping changes nothing.
 
-mod octree_support;
+mod support;
 
 use grainpack::octree::{BoxShape, Octree, Params, Sphere};
-use octree_support::*;
 use rand::Rng;
+use support::octree::*;
 
 #[test]
 fn invariants_hold_for_every_scene_and_parameter_set() {

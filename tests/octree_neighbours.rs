@@ -1,12 +1,12 @@
 //! Neighbour queries equal brute force, exactly.
 
-mod octree_support;
+mod support;
 
 use grainpack::octree::{
     brute_force_neighbours, BoxShape, Neighbour, Octree, OctreeError, Params, Sphere,
 };
-use octree_support::*;
 use rand::Rng;
+use support::octree::*;
 
 type Key = (u32, [u64; 3]);
 

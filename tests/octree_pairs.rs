@@ -1,9 +1,9 @@
 //! The octree's pair set equals brute force's, exactly, on many kinds of scenes.
 
-mod octree_support;
+mod support;
 
 use grainpack::octree::{BoxShape, Octree, Params, Sphere};
-use octree_support::*;
+use support::octree::*;
 
 const SEEDS: u64 = 6;
 

@@ -2,7 +2,7 @@
 //! reported with its file, key, line, column and value, and the grains drawn follow the
 //! requested statistics, deterministically for a seed.
 
-mod scene_support;
+mod support;
 
 use grainpack::contact::rotation_column;
 use grainpack::io::scene::SceneError;
@@ -10,9 +10,9 @@ use grainpack::laws::{Distribution, VonMises, VonMisesCdf};
 use grainpack::scene::{
     Axis, Boundary, GrainCount, GrainSpec, Orientation, OutputSpec, PackingParams, Rotation, Scene,
 };
-use scene_support::{assert_starts, scene_error as error};
 use std::f64::consts::PI;
 use std::path::Path;
+use support::scene::{assert_starts, scene_error as error};
 
 /// A valid scene; the tests below change one line of it at a time, so that the
 /// expected line numbers can be read off here.

@@ -1,13 +1,13 @@
 //! The `[output]` table of a scene: defaults, typed values, the RVE's cells resolved
 //! against the box, and every bad value reported with its file, line, column and key.
 
-mod scene_support;
+mod support;
 
 use grainpack::scene::{
     OutputSpec, RveFill, RveSpec, Scene, VtkSpec, DEFAULT_RVE_CELLS, DEFAULT_VTK_RESOLUTION,
     MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
 };
-use scene_support::{assert_starts, scene_error};
+use support::scene::{assert_starts, scene_error};
 
 /// A valid scene in a 50 × 40 × 25 periodic box, 8 lines; `[output]` goes on line 9
 /// and its keys from line 10 on.

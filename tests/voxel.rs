@@ -2,14 +2,14 @@
 //! independent inside test, periodic wrap, ties, threads, the per-grain report, errors.
 //! The files (.vti, .png) are in `voxel_files.rs`.
 
-mod voxel_support;
+mod support;
 
 use grainpack::io::voxel::{brute_force_voxelise, grain_report, voxelise, VoxelError};
 use grainpack::packing::PackedGrain;
 use grainpack::scene::RveFill;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use voxel_support::*;
+use support::voxel::*;
 
 #[test]
 fn sphere_voxel_volume_approaches_the_ball_volume() {

@@ -1,12 +1,12 @@
 //! The voxel RVE's files: the .vti decodes back to the grid, the PNG is whole.
 
-mod voxel_support;
+mod support;
 
 use grainpack::io::voxel::{voxelise, write_sections_png, write_vti};
 use grainpack::scene::RveFill;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use voxel_support::*;
+use support::voxel::*;
 
 #[test]
 fn vti_decodes_to_the_grid() {
@@ -86,8 +86,7 @@ fn sections_png_is_written_whole() {
         2,
     )
     .unwrap();
-    let dir = std::env::temp_dir().join(format!("grainpack-voxel-png-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = support::files::scratch("voxel", "png");
     let path = dir.join("sections.png");
     write_sections_png(&grid, &path).unwrap();
     let bytes = std::fs::read(&path).unwrap();

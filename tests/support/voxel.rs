@@ -1,6 +1,5 @@
 //! What the voxel tests share: grains, boxes, random grain sets and an independent
 //! inside test.
-#![allow(dead_code)] // each test binary uses its own part
 
 use grainpack::contact::{overlaps, Ellipsoid};
 use grainpack::io::voxel::VoxelGrid;

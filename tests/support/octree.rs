@@ -1,5 +1,4 @@
 //! Scene generators and set comparisons shared by the octree tests.
-#![allow(dead_code)] // each test file uses a different subset
 
 use grainpack::octree::{brute_force_pairs, BoxShape, Octree, Pair, Params, Sphere};
 use rand::rngs::StdRng;
