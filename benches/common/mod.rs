@@ -53,11 +53,15 @@ pub fn pack_scene(
 ) {
     let specs = scene.sample_grains(&mut scene.rng()).unwrap();
     let t = std::time::Instant::now();
+    let job = grainpack::packing::Job {
+        specs: &specs,
+        domain: &scene.domain,
+        params: &scene.packing,
+        tuning: &grainpack::packing::Tuning::default(),
+        seed: scene.seed,
+    };
     let p = grainpack::packing::pack(
-        &specs,
-        &scene.domain,
-        &scene.packing,
-        scene.seed,
+        &job,
         &std::sync::atomic::AtomicBool::new(false),
         &mut |_| {},
     )

@@ -8,46 +8,23 @@ use super::forces::Forces;
 use super::grains::rotate_by;
 use super::neighbours::Neighbours;
 use super::state::State;
-use super::{Counters, PackError, Progress, CONTACT_GAP};
+use super::{Counters, FireParams, PackError, Progress};
 use crate::contact::dot;
 use crate::scene::{Boundary, Rotation};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-/// Time step at the start (grains have unit mass; a pair's stiffness is about 2).
-pub const DT_START: f64 = 0.05;
-/// Largest time step, below the stability limit `2/√k` of a grain with ten contacts.
-pub const DT_MAX: f64 = 0.4;
-/// Smallest time step.
-pub const DT_MIN: f64 = 0.002;
-/// Steps with positive power before the time step may grow (FIRE's `N_delay`).
-pub const N_DELAY: u32 = 5;
-/// Growth of the time step after [`N_DELAY`] steps of positive power.
-pub const DT_GROW: f64 = 1.1;
-/// Shrinking of the time step when the power turns negative.
-pub const DT_SHRINK: f64 = 0.5;
-/// Initial mixing of the velocity toward the force direction.
-pub const ALPHA_START: f64 = 0.1;
-/// Decay of the mixing after each step of positive power.
-pub const ALPHA_DECAY: f64 = 0.99;
-/// The most a grain moves in one step, as a share of `S ×` its smallest semi-axis:
-/// it keeps a grain from passing through a thin neighbour in one step.
-pub const MAX_MOVE: f64 = 0.1;
-/// Relaxation is judged every `WINDOW` steps: stuck when the least energy of the
-/// window is not below [`STUCK_RATIO`] times that of the window before.
-pub const WINDOW: u64 = 100;
-/// See [`WINDOW`].
-pub const STUCK_RATIO: f64 = 0.8;
-
 /// What a relaxation works with besides the grains: the broad and narrow phase's
 /// buffers, the counters, and the caller's stop flag and progress report.
-pub(crate) struct Run<'a> {
+pub(crate) struct Context<'a> {
     pub neighbours: Neighbours,
     pub forces: Forces,
     pub counters: Counters,
     pub rotation: Rotation,
     /// The most a grain may turn from its drawn orientation (radians).
     pub max_turn: f64,
+    /// [`ProtocolParams::contact_gap`](super::ProtocolParams::contact_gap).
+    pub contact_gap: f64,
     pub stop: &'a AtomicBool,
     pub progress: &'a mut dyn FnMut(&Progress),
 }
@@ -55,7 +32,7 @@ pub(crate) struct Run<'a> {
 /// How a relaxation ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Outcome {
-    /// Every pair apart at the real scale (μ ≥ 1 + [`CONTACT_GAP`]), every grain inside.
+    /// Every pair apart at the real scale (μ ≥ 1 + contact gap), every grain inside.
     Clean,
     /// The energy stopped falling: the grains are jammed at this scale.
     Stuck,
@@ -67,8 +44,8 @@ pub(crate) enum Outcome {
 
 /// The integrator's state: velocities (angular ones in length units, `ω × L`) and the
 /// adaptive step.
-#[derive(Default)]
 pub(crate) struct Fire {
+    params: FireParams,
     velocity: Vec<[f64; 3]>,
     spin: Vec<[f64; 3]>,
     levers: Vec<f64>,
@@ -88,12 +65,28 @@ pub(crate) struct Fire {
 }
 
 impl Fire {
+    pub fn new(params: FireParams) -> Self {
+        Self {
+            params,
+            velocity: Vec::new(),
+            spin: Vec::new(),
+            levers: Vec::new(),
+            torques: Vec::new(),
+            turned: Vec::new(),
+            dt: params.dt_start,
+            alpha: params.alpha_start,
+            positive: 0,
+            restore: 0.0,
+            turns: Vec::new(),
+        }
+    }
+
     /// Relaxes the state at scale `s`, with the energy taken at `big_s ≥ s` (the
     /// margin makes the last overlaps vanish at `s` before the energy reaches zero).
     pub fn relax(
         &mut self,
         state: &mut State,
-        run: &mut Run<'_>,
+        run: &mut Context<'_>,
         s: f64,
         big_s: f64,
         budget: u64,
@@ -105,15 +98,16 @@ impl Fire {
         self.velocity.resize(n, [0.0; 3]);
         self.spin.clear();
         self.spin.resize(n, [0.0; 3]);
-        self.dt = DT_START;
-        self.alpha = ALPHA_START;
+        let p = self.params;
+        self.dt = p.dt_start;
+        self.alpha = p.alpha_start;
         self.positive = 0;
         let (mut window_min, mut previous_min) = (f64::INFINITY, f64::INFINITY);
         for step in 0..budget {
             if run.stop.load(Ordering::Relaxed) {
                 return Ok(Outcome::Interrupted);
             }
-            let Run {
+            let Context {
                 neighbours,
                 forces,
                 counters,
@@ -141,7 +135,8 @@ impl Fire {
                         0.5 * self.restore * l * l * dot(t, t)
                     })
                     .sum::<f64>();
-            } else if forces.min_mu1 >= s * (1.0 + CONTACT_GAP) && self.inside(state, forces, s) {
+            } else if forces.min_mu1 >= s * (1.0 + run.contact_gap) && self.inside(state, forces, s)
+            {
                 counters.response += t2.elapsed();
                 return Ok(Outcome::Clean);
             }
@@ -152,8 +147,8 @@ impl Fire {
                 overlaps: forces.overlaps,
             });
             window_min = window_min.min(energy);
-            if (step + 1) % WINDOW == 0 {
-                if window_min > STUCK_RATIO * previous_min {
+            if (step + 1) % p.window == 0 {
+                if window_min > p.stuck_ratio * previous_min {
                     counters.response += t2.elapsed();
                     return Ok(Outcome::Stuck);
                 }
@@ -179,7 +174,7 @@ impl Fire {
         big_s: f64,
         (mode, max_turn): (Rotation, f64),
     ) -> Result<(), PackError> {
-        let n = state.len();
+        let (n, p) = (state.len(), self.params);
         let rotate = mode != Rotation::None;
         // Angular degrees of freedom in length units: ω × (S · largest semi-axis);
         // only rotating grains need them.
@@ -212,14 +207,14 @@ impl Fire {
         }
         if power > 0.0 {
             self.positive += 1;
-            if self.positive > N_DELAY {
-                self.dt = (self.dt * DT_GROW).min(DT_MAX);
-                self.alpha *= ALPHA_DECAY;
+            if self.positive > p.n_delay {
+                self.dt = (self.dt * p.dt_grow).min(p.dt_max);
+                self.alpha *= p.alpha_decay;
             }
         } else {
             self.positive = 0;
-            self.dt = (self.dt * DT_SHRINK).max(DT_MIN);
-            self.alpha = ALPHA_START;
+            self.dt = (self.dt * p.dt_shrink).max(p.dt_min);
+            self.alpha = p.alpha_start;
             // FIRE 2.0: step back half a step, and stop.
             let back = 0.5 * self.dt;
             for (c, v) in state.centres.iter_mut().zip(&self.velocity) {
@@ -254,7 +249,7 @@ impl Fire {
         let mut turned = std::mem::take(&mut self.turned);
         turned.clear();
         for i in 0..n {
-            let limit = MAX_MOVE * big_s * state.shapes[i].inscribed_radius() / dt;
+            let limit = p.max_move * big_s * state.shapes[i].inscribed_radius() / dt;
             let f = forces.force[i];
             let v = &mut self.velocity[i];
             *v = v.map(|x| keep * x);

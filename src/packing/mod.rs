@@ -9,19 +9,20 @@
 //! overlap (Donev et al., *J. Comput. Phys.* 202, 737, 2005):
 //! 1. grains start at random positions;
 //! 2. at a trial scale `s`, the overlap energy `Σ w (1 − μ)²` of all pairs with μ < 1
-//!    (at `s` inflated by [`MARGIN`]) is minimised with FIRE (`fire.rs`): each step is
+//!    (at `s` inflated by [`margin`](ProtocolParams::margin)) is minimised with FIRE (`fire.rs`): each step is
 //!    **broad phase** (a Verlet list of candidate pairs from the octree), **narrow
 //!    phase** (the contact function of every candidate pair) and **response** (forces
 //!    and torques, a damped inertial move);
 //! 3. the relaxation ends *clean* as soon as every pair is apart at the true scale (μ ≥
-//!    1 + [`CONTACT_GAP`]), or *stuck* when the energy stops falling (jammed);
+//!    1 + [`contact_gap`](ProtocolParams::contact_gap)), or *stuck* when the energy stops falling (jammed);
 //! 4. the scale moves: the first trial is the target itself (`s = 1`); after a stuck
 //!    relaxation the state shrunk by its smallest μ is a clean state at once, and the
 //!    scale is bisected between the best clean scale and the smallest stuck one until
 //!    they are within `jam_resolution` (relative; a scene parameter);
 //! 5. grains that may turn and reached the target are turned back toward their drawn
-//!    orientations (`restore`, a scene parameter): [`RESTORE_STEPS`] steps with a pull
-//!    of stiffness [`RESTORE_STIFFNESS`] toward them, then a plain relaxation; the
+//!    orientations (`restore`, a scene parameter): [`restore_steps`](ProtocolParams::restore_steps)
+//!    steps with a pull of stiffness [`restore_stiffness`](ProtocolParams::restore_stiffness)
+//!    toward them, then a plain relaxation; the
 //!    result is kept if it is clean.
 //!
 //! The margin makes a relaxation finish as soon as the true overlaps are gone, long
@@ -33,45 +34,20 @@ mod forces;
 mod grains;
 mod neighbours;
 mod state;
+mod tuning;
 mod verify;
 
-pub use fire::{
-    ALPHA_DECAY, ALPHA_START, DT_GROW, DT_MAX, DT_MIN, DT_SHRINK, DT_START, MAX_MOVE, N_DELAY,
-    STUCK_RATIO, WINDOW,
-};
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
-pub use neighbours::SKIN;
+pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
 pub use verify::{verify, Verification};
 
 use crate::scene::{Boundary, Rotation};
-use fire::{Fire, Outcome, Run};
+use fire::{Context, Fire, Outcome};
+use neighbours::Neighbours;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use state::{State, WALL_MARGIN};
 
-/// Pairs are kept at least this far apart, relatively: a relaxation is clean when every
-/// pair has `μ ≥ 1 + CONTACT_GAP` at the true sizes. 1e-9 is far above the error of
-/// the fast contact function on the shapes of a scene (≤ 1e-12 relative for aspect
-/// ratios below 100) and far below anything a user can see.
-pub const CONTACT_GAP: f64 = 1e-9;
-/// The energy is taken at the scale inflated by `1 + MARGIN`: the relaxation can stop
-/// when the overlaps at the inflated size are below `MARGIN`, since the true sizes are
-/// then apart. 10⁻³ costs at most 0.3 % of packing fraction at jamming.
-pub const MARGIN: f64 = 1e-3;
-/// FIRE steps one relaxation may take before it counts as stuck.
-pub const STAGE_STEPS: u64 = 20_000;
-/// The state shrunk by its smallest μ is shrunk by this much more, so that it keeps the
-/// [`CONTACT_GAP`] margin after rounding.
-pub const SHRINK_MARGIN: f64 = 4.0 * CONTACT_GAP;
-/// Stiffness of the pull back toward the drawn orientations once grains that may turn
-/// are packed (`Fire::restore` in `fire.rs`): strong enough to turn them back through
-/// small overlaps (it is measured against the overlap energy of a pair, `(S(ρ_i +
-/// ρ_j))²(1 − μ)²`), after which a plain relaxation clears those overlaps. On kanapy's
-/// scene it halves the median turn (21° to 9–10°); 0.01–1 do about as well.
-pub const RESTORE_STIFFNESS: f64 = 0.1;
-/// FIRE steps of the pull; more turn the grains back little further (200: median
-/// turn 9.7°, 500: 8.2° on kanapy's scene, at 1.5 times the cost).
-pub const RESTORE_STEPS: u64 = 200;
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
 
@@ -89,7 +65,8 @@ pub struct Progress {
     pub scale: f64,
     /// Packing fraction at that scale.
     pub fraction: f64,
-    /// Pairs overlapping in the last step (at the scale inflated by [`MARGIN`]).
+    /// Pairs overlapping in the last step (at the scale inflated by
+    /// [`margin`](ProtocolParams::margin)).
     pub overlaps: usize,
 }
 
@@ -150,23 +127,48 @@ pub enum PackError {
     /// More grains than ids can name.
     #[error("{0} grains: at most 2^32 − 1 are supported")]
     TooMany(usize),
+    /// A tunable is out of range.
+    #[error(transparent)]
+    Tuning(#[from] TuningError),
+}
+
+/// What to pack: the grains, the box, the scene's packing parameters, the engine's
+/// tunables and the seed of the starting positions.
+#[derive(Debug, Clone, Copy)]
+pub struct Job<'a> {
+    /// The grains as drawn (id = index).
+    pub specs: &'a [GrainSpec],
+    /// The box.
+    pub domain: &'a Domain,
+    /// The scene's `[packing]` table.
+    pub params: &'a PackingParams,
+    /// The engine's tunables ([`Tuning::default`] for the shipped behaviour).
+    pub tuning: &'a Tuning,
+    /// Seed of the starting positions.
+    pub seed: u64,
 }
 
 /// Packs the grains into the domain. See the module docs for the algorithm.
 ///
-/// Deterministic for a given `seed`, whatever the number of threads: candidate pairs
+/// Deterministic for a given seed, whatever the number of threads: candidate pairs
 /// come in a fixed order, each pair is evaluated on its own, and forces are summed in
 /// pair order. `stop` is polled once per FIRE step; when set, the loop ends with
 /// [`StopReason::Interrupted`] and returns the best overlap-free state. `progress` is
 /// called after every FIRE step's narrow phase.
 pub fn pack(
-    specs: &[GrainSpec],
-    domain: &Domain,
-    params: &PackingParams,
-    seed: u64,
+    job: &Job<'_>,
     stop: &AtomicBool,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<Packing, PackError> {
+    let Job {
+        specs,
+        domain,
+        params,
+        tuning,
+        seed,
+    } = *job;
+    tuning.check()?;
+    let protocol = tuning.protocol;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(POSITION_STREAM);
     let centres: Vec<[f64; 3]> = specs
@@ -185,16 +187,17 @@ pub fn pack(
         e => e,
     })?;
     state.centres = order.iter().map(|&k| centres[k]).collect();
-    let mut run = Run {
-        neighbours: Default::default(),
+    let mut run = Context {
+        neighbours: Neighbours::new(tuning.neighbours),
         forces: Default::default(),
         counters: Counters::default(),
         rotation: params.rotation,
         max_turn: params.max_turn,
+        contact_gap: protocol.contact_gap,
         stop,
         progress,
     };
-    let mut fire = Fire::default();
+    let mut fire = Fire::new(tuning.fire);
     // The best clean state (scale, centres, orientations) and the smallest stuck scale.
     let mut best: Option<Snapshot> = None;
     let mut stuck = f64::INFINITY;
@@ -209,8 +212,8 @@ pub fn pack(
             &mut state,
             &mut run,
             s,
-            s * (1.0 + MARGIN),
-            left.min(STAGE_STEPS),
+            s * (1.0 + protocol.margin),
+            left.min(protocol.stage_steps),
         )?;
         match outcome {
             Outcome::Interrupted => break StopReason::Interrupted,
@@ -222,7 +225,7 @@ pub fn pack(
             }
             Outcome::Stuck | Outcome::Budget => {
                 stuck = stuck.min(s);
-                let shrunk = clean_scale(&mut state, &mut run, s)?;
+                let shrunk = clean_scale(&mut state, &mut run, &protocol, s)?;
                 if best.as_ref().is_none_or(|b| b.scale < shrunk) {
                     best = Some(Snapshot::of(&state, shrunk));
                 }
@@ -237,7 +240,7 @@ pub fn pack(
     let mut snapshot = match best {
         Some(b) => b,
         None => {
-            let shrunk = clean_scale(&mut state, &mut run, s)?;
+            let shrunk = clean_scale(&mut state, &mut run, &protocol, s)?;
             Snapshot::of(&state, shrunk)
         }
     };
@@ -245,7 +248,9 @@ pub fn pack(
     // target is turned back.
     if params.restore && run.rotation != Rotation::None && reason == StopReason::TargetReached {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
-        if let Some(turned_back) = turn_back(&mut state, &mut fire, &mut run, &snapshot, left)? {
+        if let Some(turned_back) =
+            turn_back(&mut state, &mut fire, &mut run, &protocol, &snapshot, left)?
+        {
             snapshot = turned_back;
         }
     }
@@ -274,10 +279,15 @@ fn spatial_order(centres: &[[f64; 3]], size: [f64; 3]) -> Vec<usize> {
 }
 
 /// The largest scale up to `s` at which the current state is clean: every pair apart
-/// with the [`CONTACT_GAP`] (scaling all grains by `t` divides every μ by `t`), every
+/// with the contact gap (scaling all grains by `t` divides every μ by `t`), every
 /// grain inside the walls.
-fn clean_scale(state: &mut State, run: &mut Run<'_>, s: f64) -> Result<f64, PackError> {
-    let big_s = s * (1.0 + MARGIN);
+fn clean_scale(
+    state: &mut State,
+    run: &mut Context<'_>,
+    protocol: &ProtocolParams,
+    s: f64,
+) -> Result<f64, PackError> {
+    let big_s = s * (1.0 + protocol.margin);
     run.neighbours.update(state, big_s)?;
     run.forces.evaluate(
         state,
@@ -286,7 +296,7 @@ fn clean_scale(state: &mut State, run: &mut Run<'_>, s: f64) -> Result<f64, Pack
         big_s,
         false,
     );
-    let mut t = s.min(run.forces.min_mu1 / (1.0 + CONTACT_GAP));
+    let mut t = s.min(run.forces.min_mu1 / (1.0 + protocol.contact_gap));
     if state.domain.boundary == Boundary::Reflecting {
         let size = state.domain.size;
         for (c, w) in state.centres.iter().zip(&state.half_widths) {
@@ -296,21 +306,26 @@ fn clean_scale(state: &mut State, run: &mut Run<'_>, s: f64) -> Result<f64, Pack
             }
         }
     }
-    Ok(t * (1.0 - SHRINK_MARGIN))
+    Ok(t * (1.0 - protocol.shrink_margin))
 }
 
 /// Turns the grains of a clean snapshot back toward their drawn orientations as far as
-/// their neighbours let them: [`RESTORE_STEPS`] FIRE steps with a pull of stiffness
-/// [`RESTORE_STIFFNESS`], then a plain relaxation at the same scale. Returns the state
+/// their neighbours let them: `restore_steps` FIRE steps with a pull of stiffness
+/// `restore_stiffness` ([`ProtocolParams`]), then a plain relaxation at the same scale. Returns the state
 /// if that ends clean (within `budget` steps in all), `None` otherwise.
 fn turn_back(
     state: &mut State,
     fire: &mut Fire,
-    run: &mut Run<'_>,
+    run: &mut Context<'_>,
+    protocol: &ProtocolParams,
     snapshot: &Snapshot,
     budget: u64,
 ) -> Result<Option<Snapshot>, PackError> {
-    if budget <= RESTORE_STEPS {
+    let (steps, big_s) = (
+        protocol.restore_steps,
+        snapshot.scale * (1.0 + protocol.margin),
+    );
+    if budget <= steps {
         return Ok(None);
     }
     state.centres.clone_from(&snapshot.centres);
@@ -320,16 +335,16 @@ fn turn_back(
         .collect();
     state.set_orientations(&changed)?;
     let s = snapshot.scale;
-    fire.restore = RESTORE_STIFFNESS;
+    fire.restore = protocol.restore_stiffness;
     run.counters.steps += 1;
-    let pulled = fire.relax(state, run, s, s * (1.0 + MARGIN), RESTORE_STEPS);
+    let pulled = fire.relax(state, run, s, big_s, steps);
     fire.restore = 0.0;
     if pulled? == Outcome::Interrupted {
         return Ok(None);
     }
     run.counters.steps += 1;
-    let left = (budget - RESTORE_STEPS).min(STAGE_STEPS);
-    let settled = fire.relax(state, run, s, s * (1.0 + MARGIN), left)?;
+    let left = (budget - steps).min(protocol.stage_steps);
+    let settled = fire.relax(state, run, s, big_s, left)?;
     Ok((settled == Outcome::Clean).then(|| Snapshot::of(state, s)))
 }
 

@@ -2,21 +2,13 @@
 //! rebuilt only when a pair may have come into reach since the last build.
 
 use super::state::State;
+use super::NeighbourParams;
 use super::PackError;
-use crate::octree::{Octree, Pair, Params, Sphere};
-
-/// Candidate pairs are found for bounding spheres grown by a skin of
-/// `SKIN · S · (mean bounding radius)`, and kept while no pair can have come into
-/// reach: `2 · (largest displacement since) + 2 · (growth of S since) · (largest
-/// bounding radius) ≤ skin`. A pair in the list costs almost nothing while its μ
-/// bound keeps it out of reach (see `forces::BOUND_SLACK`), so a thick skin that
-/// halves the octree builds pays: on `configs/kanapy_elongated.toml` (one thread,
-/// user time of 3 runs) 0.15 took 0.86–1.09 s, 0.3 0.80–1.02 s, 0.6 0.74–0.83 s.
-pub const SKIN: f64 = 0.6;
+use crate::octree::{Octree, Pair, Sphere};
 
 /// The candidate pairs and what is needed to know when they go stale.
-#[derive(Default)]
 pub(crate) struct Neighbours {
+    params: NeighbourParams,
     pub pairs: Vec<Pair>,
     spheres: Vec<Sphere>,
     /// Scale the list was built for.
@@ -29,6 +21,19 @@ pub(crate) struct Neighbours {
 }
 
 impl Neighbours {
+    /// An empty list, stale until the first [`update`](Self::update).
+    pub fn new(params: NeighbourParams) -> Self {
+        Self {
+            params,
+            pairs: Vec::new(),
+            spheres: Vec::new(),
+            built_scale: 0.0,
+            skin: 0.0,
+            anchors: Vec::new(),
+            builds: 0,
+        }
+    }
+
     /// Makes sure the list holds every pair whose bounding spheres at scale `scale`
     /// meet; returns whether it was rebuilt (the centres are wrapped then, and only
     /// then, since the pairs' periodic shifts refer to the centres as they are).
@@ -43,9 +48,9 @@ impl Neighbours {
             .map(|e| e.bounding_radius())
             .sum::<f64>()
             / state.len() as f64;
-        self.skin = SKIN * scale * mean;
+        self.skin = self.params.skin * scale * mean;
         state.spheres(scale, 0.5 * self.skin, &mut self.spheres);
-        let tree = Octree::build(&self.spheres, state.box_shape, Params::default())?;
+        let tree = Octree::build(&self.spheres, state.box_shape, self.params.octree)?;
         tree.pairs(&mut self.pairs);
         // A grain shorter than the box never meets its own image.
         self.pairs.retain(|p| p.i != p.j);

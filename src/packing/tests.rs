@@ -37,17 +37,25 @@ fn pack_with(text: &str, set: impl Fn(&mut PackingParams)) -> (Packing, Vec<Grai
     let mut scene = Scene::from_str(text, "test.toml").unwrap();
     set(&mut scene.packing);
     let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-    let stop = AtomicBool::new(false);
-    let p = pack(
-        &specs,
-        &scene.domain,
-        &scene.packing,
-        scene.seed,
-        &stop,
-        &mut |_| {},
-    )
-    .unwrap();
+    let p = pack_tuned(&scene, &specs, &Tuning::default(), false).unwrap();
     (p, specs)
+}
+
+/// Packs the drawn grains of `scene` with its seed; `stopped` raises the stop flag first.
+fn pack_tuned(
+    scene: &Scene,
+    specs: &[GrainSpec],
+    tuning: &Tuning,
+    stopped: bool,
+) -> Result<Packing, PackError> {
+    let job = Job {
+        specs,
+        domain: &scene.domain,
+        params: &scene.packing,
+        tuning,
+        seed: scene.seed,
+    };
+    pack(&job, &AtomicBool::new(stopped), &mut |_| {})
 }
 
 #[test]
@@ -149,8 +157,7 @@ fn a_step_limit_still_gives_a_clean_state() {
     let mut scene = Scene::from_str(DENSE_SPHEROIDS, "test.toml").unwrap();
     scene.packing.max_steps = 5;
     let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-    let stop = AtomicBool::new(false);
-    let p = pack(&specs, &scene.domain, &scene.packing, 1, &stop, &mut |_| {}).unwrap();
+    let p = pack_tuned(&scene, &specs, &Tuning::default(), false).unwrap();
     assert_eq!(p.stop, StopReason::StepLimit);
     assert!(p.verification.is_clean());
     assert!(p.scale > 0.0 && p.scale < 1.0);
@@ -160,8 +167,42 @@ fn a_step_limit_still_gives_a_clean_state() {
 fn a_raised_stop_flag_interrupts_with_a_clean_state() {
     let scene = Scene::from_str(DENSE_SPHEROIDS, "test.toml").unwrap();
     let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-    let stop = AtomicBool::new(true);
-    let p = pack(&specs, &scene.domain, &scene.packing, 1, &stop, &mut |_| {}).unwrap();
+    let p = pack_tuned(&scene, &specs, &Tuning::default(), true).unwrap();
     assert_eq!(p.stop, StopReason::Interrupted);
     assert!(p.verification.is_clean());
+}
+
+#[test]
+fn a_tunable_out_of_range_is_refused_by_name_before_packing() {
+    let scene = Scene::from_str(DENSE_SPHEROIDS, "test.toml").unwrap();
+    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+    let mut tuning = Tuning::default();
+    tuning.fire.stuck_ratio = 1.5;
+    let err = pack_tuned(&scene, &specs, &tuning, false).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "tuning: fire.stuck_ratio = 1.5 is out of range: in (0, 1)"
+    );
+    let mut tuning = Tuning::default();
+    tuning.neighbours.octree.max_leaf_size = 0;
+    assert!(matches!(
+        pack_tuned(&scene, &specs, &tuning, false),
+        Err(PackError::Domain(_))
+    ));
+}
+
+#[test]
+fn the_contact_gap_asked_for_is_kept_between_every_pair() {
+    let scene = Scene::from_str(DENSE_SPHEROIDS, "test.toml").unwrap();
+    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+    let mut tuning = Tuning::default();
+    tuning.protocol.contact_gap = 1e-3;
+    tuning.protocol.shrink_margin = 4e-3;
+    let p = pack_tuned(&scene, &specs, &tuning, false).unwrap();
+    assert!(p.verification.is_clean());
+    // μ ≥ 1 + gap for every pair, up to the accurate function's rounding.
+    assert!(
+        p.verification.min_mu2 >= (1.0 + 1e-3f64).powi(2) * (1.0 - 1e-12),
+        "{p:?}"
+    );
 }

@@ -21,7 +21,7 @@ mod statistics;
 
 pub use statistics::{PhaseStatistics, QuantityStatistics, Share, Statistics, TurnStatistics};
 
-use crate::packing::{pack, PackError, Packing, Progress, Verification};
+use crate::packing::{pack, Job, PackError, Packing, Progress, Tuning, Verification};
 use crate::scene::{GrainSpec, SampleError, Scene};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -43,6 +43,8 @@ pub struct RunOptions<'a> {
     /// Polled once per FIRE step: once set, the loop stops and the best overlap-free
     /// state is returned with [`StopReason::Interrupted`](crate::packing::StopReason).
     pub interrupt: Option<&'a AtomicBool>,
+    /// The engine's tunables; the default is what every shipped figure used.
+    pub tuning: Tuning,
 }
 
 /// What a run gives back.
@@ -115,6 +117,7 @@ pub fn run(scene: &Scene, options: RunOptions) -> Result<RunResult, RunError> {
         threads,
         progress,
         interrupt,
+        tuning,
     } = options;
     let seed = seed.unwrap_or(scene.seed);
     let specs = scene
@@ -128,8 +131,14 @@ pub fn run(scene: &Scene, options: RunOptions) -> Result<RunResult, RunError> {
         None => &mut silent,
     };
     let packing_started = Instant::now();
-    let drawn = &specs;
-    let mut pack_scene = move || pack(drawn, &scene.domain, &scene.packing, seed, stop, progress);
+    let job = Job {
+        specs: &specs,
+        domain: &scene.domain,
+        params: &scene.packing,
+        tuning: &tuning,
+        seed,
+    };
+    let mut pack_scene = move || pack(&job, stop, progress);
     let (packing, threads) = match threads {
         Some(n) => {
             let pool = rayon::ThreadPoolBuilder::new()

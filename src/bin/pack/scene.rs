@@ -51,6 +51,7 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
             threads: options.threads,
             progress: Some(&mut progress),
             interrupt: Some(&STOP),
+            ..RunOptions::default()
         },
     );
     bar.finish();

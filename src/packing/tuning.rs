@@ -1,0 +1,272 @@
+//! The engine's tunables, each with the value every shipped figure was measured with as
+//! its default. A scene does not set them; a library user may, through
+//! [`Job::tuning`](super::Job::tuning), and [`Tuning::check`] refuses values the loop
+//! cannot work with.
+
+use crate::octree;
+use thiserror::Error;
+
+/// FIRE, the integrator (Bitzek et al. 2006, FIRE 2.0 of Guénolé et al. 2020).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FireParams {
+    /// Time step at the start (grains have unit mass; a pair's stiffness is about 2).
+    /// Default 0.05.
+    pub dt_start: f64,
+    /// Largest time step, below the stability limit `2/√k` of a grain with ten
+    /// contacts. Default 0.4.
+    pub dt_max: f64,
+    /// Smallest time step. Default 0.002.
+    pub dt_min: f64,
+    /// Steps with positive power before the time step may grow (FIRE's `N_delay`).
+    /// Default 5.
+    pub n_delay: u32,
+    /// Growth of the time step after `n_delay` steps of positive power. Default 1.1.
+    pub dt_grow: f64,
+    /// Shrinking of the time step when the power turns negative. Default 0.5.
+    pub dt_shrink: f64,
+    /// Initial mixing of the velocity toward the force direction. Default 0.1.
+    pub alpha_start: f64,
+    /// Decay of the mixing after each step of positive power. Default 0.99.
+    pub alpha_decay: f64,
+    /// The most a grain moves in one step, as a share of `S ×` its smallest
+    /// semi-axis: it keeps a grain from passing through a thin neighbour in one step.
+    /// Default 0.1.
+    pub max_move: f64,
+    /// Relaxation is judged every `window` steps: stuck when the least energy of the
+    /// window is not below `stuck_ratio` times that of the window before. Default 100.
+    pub window: u64,
+    /// See `window`. Default 0.8.
+    pub stuck_ratio: f64,
+}
+
+impl Default for FireParams {
+    fn default() -> Self {
+        Self {
+            dt_start: 0.05,
+            dt_max: 0.4,
+            dt_min: 0.002,
+            n_delay: 5,
+            dt_grow: 1.1,
+            dt_shrink: 0.5,
+            alpha_start: 0.1,
+            alpha_decay: 0.99,
+            max_move: 0.1,
+            window: 100,
+            stuck_ratio: 0.8,
+        }
+    }
+}
+
+/// The compress-and-relax protocol around FIRE (module docs of [`packing`](super)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProtocolParams {
+    /// Pairs are kept at least this far apart, relatively: a relaxation is clean when
+    /// every pair has `μ ≥ 1 + contact_gap` at the true sizes. 1e-9 (the default) is
+    /// far above the error of the fast contact function on the shapes of a scene and
+    /// far below anything a user can see.
+    pub contact_gap: f64,
+    /// The energy is taken at the scale inflated by `1 + margin`: the relaxation can
+    /// stop when the overlaps at the inflated size are below `margin`, since the true
+    /// sizes are then apart. 10⁻³ (the default) costs at most 0.3 % of packing fraction
+    /// at jamming.
+    pub margin: f64,
+    /// FIRE steps one relaxation may take before it counts as stuck. Default 20 000.
+    pub stage_steps: u64,
+    /// The state shrunk by its smallest μ is shrunk by this much more, so that it keeps
+    /// the `contact_gap` after rounding. Default `4 · contact_gap`.
+    pub shrink_margin: f64,
+    /// Stiffness of the pull back toward the drawn orientations once grains that may
+    /// turn are packed: strong enough to turn them back through small overlaps (it is
+    /// measured against the overlap energy of a pair, `(S(ρ_i + ρ_j))²(1 − μ)²`), after
+    /// which a plain relaxation clears those overlaps. On kanapy's scene 0.1 (the
+    /// default) halves the median turn (21° to 9–10°); 0.01–1 do about as well.
+    pub restore_stiffness: f64,
+    /// FIRE steps of the pull; more turn the grains back little further (200, the
+    /// default: median turn 9.7°, 500: 8.2° on kanapy's scene, at 1.5 times the cost).
+    pub restore_steps: u64,
+}
+
+impl Default for ProtocolParams {
+    fn default() -> Self {
+        let contact_gap = 1e-9;
+        Self {
+            contact_gap,
+            margin: 1e-3,
+            stage_steps: 20_000,
+            shrink_margin: 4.0 * contact_gap,
+            restore_stiffness: 0.1,
+            restore_steps: 200,
+        }
+    }
+}
+
+/// The broad phase of the loop: a Verlet list of candidate pairs from the octree.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NeighbourParams {
+    /// Candidate pairs are found for bounding spheres grown by a skin of
+    /// `skin · S · (mean bounding radius)`, and kept while no pair can have come into
+    /// reach. A pair in the list costs almost nothing while its μ bound keeps it out of
+    /// reach, so a thick skin that halves the octree builds pays: on
+    /// `configs/kanapy_elongated.toml` (one thread, user time of 3 runs) 0.15 took
+    /// 0.86–1.09 s, 0.3 0.80–1.02 s, 0.6 (the default) 0.74–0.83 s.
+    pub skin: f64,
+    /// The octree's limits ([`octree::Params::default`]).
+    pub octree: octree::Params,
+}
+
+impl Default for NeighbourParams {
+    fn default() -> Self {
+        Self {
+            skin: 0.6,
+            octree: octree::Params::default(),
+        }
+    }
+}
+
+/// Everything of the engine that is not the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Tuning {
+    /// The integrator.
+    pub fire: FireParams,
+    /// The protocol around it.
+    pub protocol: ProtocolParams,
+    /// The broad phase.
+    pub neighbours: NeighbourParams,
+}
+
+/// A tunable the loop cannot work with.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("tuning: {name} = {value} is out of range: {expected}")]
+pub struct TuningError {
+    /// The field, as `fire.dt_max`.
+    pub name: &'static str,
+    /// Its value.
+    pub value: String,
+    /// What it must be.
+    pub expected: &'static str,
+}
+
+impl Tuning {
+    /// Checks every field: time steps `0 < dt_min ≤ dt_start ≤ dt_max`, factors on the
+    /// right side of 1, ratios in `(0, 1)`, step counts and window positive, margins
+    /// and the skin positive and finite, the gap non-negative.
+    ///
+    /// ```
+    /// use grainpack::packing::Tuning;
+    /// assert!(Tuning::default().check().is_ok());
+    /// let mut t = Tuning::default();
+    /// t.fire.dt_min = 1.0;
+    /// assert!(t.check().unwrap_err().to_string().contains("fire.dt_min = 1"));
+    /// ```
+    pub fn check(&self) -> Result<(), TuningError> {
+        let (f, p, n) = (&self.fire, &self.protocol, &self.neighbours);
+        let positive = |x: f64| x.is_finite() && x > 0.0;
+        let unit = |x: f64| x > 0.0 && x < 1.0;
+        let checks: [(&'static str, String, bool, &'static str); 16] = [
+            (
+                "fire.dt_min",
+                f.dt_min.to_string(),
+                positive(f.dt_min) && f.dt_min <= f.dt_start,
+                "positive, at most dt_start",
+            ),
+            (
+                "fire.dt_start",
+                f.dt_start.to_string(),
+                f.dt_start <= f.dt_max,
+                "at most dt_max",
+            ),
+            (
+                "fire.dt_max",
+                f.dt_max.to_string(),
+                positive(f.dt_max),
+                "positive and finite",
+            ),
+            (
+                "fire.dt_grow",
+                f.dt_grow.to_string(),
+                f.dt_grow.is_finite() && f.dt_grow >= 1.0,
+                "at least 1 and finite",
+            ),
+            (
+                "fire.dt_shrink",
+                f.dt_shrink.to_string(),
+                unit(f.dt_shrink),
+                "in (0, 1)",
+            ),
+            (
+                "fire.alpha_start",
+                f.alpha_start.to_string(),
+                unit(f.alpha_start),
+                "in (0, 1)",
+            ),
+            (
+                "fire.alpha_decay",
+                f.alpha_decay.to_string(),
+                unit(f.alpha_decay),
+                "in (0, 1)",
+            ),
+            (
+                "fire.max_move",
+                f.max_move.to_string(),
+                positive(f.max_move),
+                "positive and finite",
+            ),
+            (
+                "fire.window",
+                f.window.to_string(),
+                f.window > 0,
+                "at least 1",
+            ),
+            (
+                "fire.stuck_ratio",
+                f.stuck_ratio.to_string(),
+                unit(f.stuck_ratio),
+                "in (0, 1)",
+            ),
+            (
+                "protocol.contact_gap",
+                p.contact_gap.to_string(),
+                p.contact_gap.is_finite() && p.contact_gap >= 0.0,
+                "non-negative and finite",
+            ),
+            (
+                "protocol.margin",
+                p.margin.to_string(),
+                positive(p.margin),
+                "positive and finite",
+            ),
+            (
+                "protocol.stage_steps",
+                p.stage_steps.to_string(),
+                p.stage_steps > 0,
+                "at least 1",
+            ),
+            (
+                "protocol.shrink_margin",
+                p.shrink_margin.to_string(),
+                unit(p.shrink_margin),
+                "in (0, 1)",
+            ),
+            (
+                "protocol.restore_stiffness",
+                p.restore_stiffness.to_string(),
+                p.restore_stiffness.is_finite() && p.restore_stiffness >= 0.0,
+                "non-negative and finite",
+            ),
+            (
+                "neighbours.skin",
+                n.skin.to_string(),
+                positive(n.skin),
+                "positive and finite",
+            ),
+        ];
+        match checks.into_iter().find(|c| !c.2) {
+            Some((name, value, _, expected)) => Err(TuningError {
+                name,
+                value,
+                expected,
+            }),
+            None => Ok(()),
+        }
+    }
+}
