@@ -90,7 +90,7 @@ impl State {
     pub fn set_orientations(&mut self, turns: &[(usize, [f64; 4])]) -> Result<(), PackError> {
         let shapes = turns
             .par_iter()
-            .with_min_len(64)
+            .with_min_len(TURNS_PER_TASK)
             .map(|&(id, q)| self.shape_of(id, q))
             .collect::<Result<Vec<_>, _>>()?;
         for (&(id, q), (shape, widths)) in turns.iter().zip(shapes) {
@@ -178,4 +178,8 @@ impl State {
 
 /// Relative margin kept between a grain and a wall, so that the rounding of
 /// `c ± s·√Q_kk` never puts a grain a hair outside: `4 ε` per the three roundings.
+/// Turned grains one rayon task prepares at least: preparing one shape is too little
+/// work to be worth a task of its own.
+const TURNS_PER_TASK: usize = 64;
+
 pub(crate) const WALL_MARGIN: f64 = 4.0 * f64::EPSILON;

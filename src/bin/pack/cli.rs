@@ -89,7 +89,7 @@ pub enum Command {
 
 /// What to run.
 #[derive(Debug)]
-pub enum Run {
+pub enum Invocation {
     /// `pack SCENE.toml ...`: the scene file and the options.
     Scene(PathBuf, SceneArgs),
     /// A subcommand.
@@ -98,11 +98,11 @@ pub enum Run {
 
 /// Parses the command line; exits with clap's message and code 2 when it is wrong,
 /// including when neither a scene nor a subcommand is given.
-pub fn parse() -> Run {
+pub fn parse() -> Invocation {
     let cli = Cli::parse();
     match (cli.command, cli.scene.scene.clone()) {
-        (Some(command), _) => Run::Command(command),
-        (None, Some(path)) => Run::Scene(path, cli.scene),
+        (Some(command), _) => Invocation::Command(command),
+        (None, Some(path)) => Invocation::Scene(path, cli.scene),
         (None, None) => Cli::command()
             .error(
                 clap::error::ErrorKind::MissingRequiredArgument,

@@ -5,14 +5,14 @@ mod contact;
 mod exit;
 mod scene;
 
-use cli::{Command, Run};
+use cli::{Command, Invocation};
 use exit::{Exit, Failure};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let result = match cli::parse() {
-        Run::Scene(path, options) => scene::run(&path, &options),
-        Run::Command(Command::Contact {
+        Invocation::Scene(path, options) => scene::run(&path, &options),
+        Invocation::Command(Command::Contact {
             cases,
             method,
             output,

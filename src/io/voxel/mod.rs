@@ -72,8 +72,8 @@ mod moments;
 mod pieces;
 mod raster;
 mod report;
-mod runs;
 mod sections;
+mod spans;
 mod vti;
 
 pub use brute::brute_force_voxelise;

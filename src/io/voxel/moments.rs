@@ -1,6 +1,6 @@
-//! Exact second moments of each grain's voxels, summed run by run.
+//! Exact second moments of each grain's voxels, summed span by span.
 
-use super::runs::Runs;
+use super::spans::RowSpans;
 use super::VoxelGrid;
 use crate::contact::{rotation_matrix, sphere_diameter};
 use crate::packing::PackedGrain;
@@ -131,7 +131,7 @@ fn ellipsoid_major_axis(g: &PackedGrain) -> [f64; 3] {
 }
 
 /// Moments of every grain, voxel indices unwrapped to the image nearest its centre.
-pub(super) fn moments(grid: &VoxelGrid, grains: &[PackedGrain], runs: &Runs) -> Vec<Moments> {
+pub(super) fn moments(grid: &VoxelGrid, grains: &[PackedGrain], spans: &RowSpans) -> Vec<Moments> {
     let [_, ny, nz] = grid.cells;
     let h = grid.spacing();
     let empty: Vec<Moments> = grains
@@ -155,15 +155,15 @@ pub(super) fn moments(grid: &VoxelGrid, grains: &[PackedGrain], runs: &Runs) -> 
             || empty.clone(),
             |mut acc, z| {
                 for y in 0..ny {
-                    for run in &runs.runs[runs.row(y + ny * z)] {
-                        let Some(m) = acc.get_mut(run.material as usize) else {
+                    for span in &spans.spans[spans.row(y + ny * z)] {
+                        let Some(m) = acc.get_mut(span.material as usize) else {
                             continue;
                         };
                         let yu = y as i64 + shift(y, m.centre[1], grid, 1);
                         let zu = z as i64 + shift(z, m.centre[2], grid, 2);
-                        let (start, end) = (run.start as usize, run.end as usize);
-                        // The shift along x changes at most once in a run (at the
-                        // point opposite the centre); cut the run there.
+                        let (start, end) = (span.start as usize, span.end as usize);
+                        // The shift along x changes at most once in a span (at the
+                        // point opposite the centre); cut the span there.
                         let mut a = start;
                         while a < end {
                             let k = shift(a, m.centre[0], grid, 0);

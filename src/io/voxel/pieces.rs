@@ -1,11 +1,11 @@
 //! Connected pieces of each material: 6-connectivity, across the faces of a periodic box.
 //!
-//! Each row along x is cut into runs of one material; runs are joined (union–find) with
-//! the overlapping runs of the same material in the rows below in y and in z, and, in a
+//! Each row along x is cut into spans of one material; spans are joined (union–find) with
+//! the overlapping spans of the same material in the rows below in y and in z, and, in a
 //! periodic box, across the x, y and z faces. A material's pieces are its distinct roots.
-//! Runs are far fewer than voxels, so this takes little time and memory.
+//! RowSpans are far fewer than voxels, so this takes little time and memory.
 
-use super::runs::{Run, Runs};
+use super::spans::{RowSpans, Span};
 use super::VoxelGrid;
 
 /// The 6-connected pieces of one material.
@@ -18,18 +18,18 @@ pub(super) struct Pieces {
 }
 
 /// The pieces of each material `0..materials` (periodic-aware).
-pub(super) fn count_pieces(grid: &VoxelGrid, all: &Runs, materials: usize) -> Vec<Pieces> {
+pub(super) fn count_pieces(grid: &VoxelGrid, all: &RowSpans, materials: usize) -> Vec<Pieces> {
     let [_, ny, nz] = grid.cells;
-    let row_runs = |r: usize| all.row(r);
-    let runs = &all.runs;
-    let mut sets = UnionFind::new(runs.len());
+    let row_spans = |r: usize| all.row(r);
+    let spans = &all.spans;
+    let mut sets = UnionFind::new(spans.len());
     for z in 0..nz {
         for y in 0..ny {
             let row = y + ny * z;
-            let own = row_runs(row);
+            let own = row_spans(row);
             if grid.periodic && own.len() > 1 {
                 let (first, last) = (own.start, own.end - 1);
-                if runs[first].material == runs[last].material {
+                if spans[first].material == spans[last].material {
                     sets.union(first, last);
                 }
             }
@@ -44,21 +44,21 @@ pub(super) fn count_pieces(grid: &VoxelGrid, all: &Runs, materials: usize) -> Ve
                 _ => Some(z - 1),
             };
             if let Some(by) = below_y {
-                join_rows(runs, own.clone(), row_runs(by + ny * z), &mut sets);
+                join_rows(spans, own.clone(), row_spans(by + ny * z), &mut sets);
             }
             if let Some(bz) = below_z {
-                join_rows(runs, own.clone(), row_runs(y + ny * bz), &mut sets);
+                join_rows(spans, own.clone(), row_spans(y + ny * bz), &mut sets);
             }
         }
     }
-    let mut size = vec![0u64; runs.len()];
-    for (r, run) in runs.iter().enumerate() {
-        size[sets.find(r)] += u64::from(run.end - run.start);
+    let mut size = vec![0u64; spans.len()];
+    for (r, span) in spans.iter().enumerate() {
+        size[sets.find(r)] += u64::from(span.end - span.start);
     }
     let mut pieces = vec![Pieces::default(); materials];
-    for (r, run) in runs.iter().enumerate() {
+    for (r, span) in spans.iter().enumerate() {
         if sets.find(r) == r {
-            if let Some(p) = pieces.get_mut(run.material as usize) {
+            if let Some(p) = pieces.get_mut(span.material as usize) {
                 p.count += 1;
                 p.largest = p.largest.max(size[r]);
             }
@@ -67,16 +67,16 @@ pub(super) fn count_pieces(grid: &VoxelGrid, all: &Runs, materials: usize) -> Ve
     pieces
 }
 
-/// Joins the overlapping runs of one material in two rows (each sorted by start).
+/// Joins the overlapping spans of one material in two rows (each sorted by start).
 fn join_rows(
-    runs: &[Run],
+    spans: &[Span],
     a: std::ops::Range<usize>,
     b: std::ops::Range<usize>,
     sets: &mut UnionFind,
 ) {
     let (mut i, mut j) = (a.start, b.start);
     while i < a.end && j < b.end {
-        let (ra, rb) = (runs[i], runs[j]);
+        let (ra, rb) = (spans[i], spans[j]);
         if ra.material == rb.material && ra.start < rb.end && rb.start < ra.end {
             sets.union(i, j);
         }
@@ -137,7 +137,7 @@ mod tests {
     }
 
     fn count_pieces_of(grid: &VoxelGrid, materials: usize) -> Vec<Pieces> {
-        count_pieces(grid, &Runs::new(grid), materials)
+        count_pieces(grid, &RowSpans::new(grid), materials)
     }
 
     fn counts(p: Vec<Pieces>) -> Vec<u32> {

@@ -3,7 +3,7 @@
 
 use super::moments::{moments, VoxelShape};
 use super::pieces::count_pieces;
-use super::runs::Runs;
+use super::spans::RowSpans;
 use super::{VoxelError, VoxelGrid};
 use crate::contact;
 use crate::packing::PackedGrain;
@@ -77,9 +77,9 @@ pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelRep
             given: grains.len(),
         });
     }
-    let runs = Runs::new(grid);
-    let moments = moments(grid, grains, &runs);
-    let pieces = count_pieces(grid, &runs, grains.len());
+    let spans = RowSpans::new(grid);
+    let moments = moments(grid, grains, &spans);
+    let pieces = count_pieces(grid, &spans, grains.len());
     let h = grid.spacing();
     let vv = grid.voxel_volume();
     let box_volume: f64 = grid.size.iter().product();

@@ -154,10 +154,13 @@ fn short(x: f64) -> String {
 
 /// A fixed colour per material: hue, saturation and lightness from a hash of the number.
 fn colour_of(material: u32) -> RGBColor {
-    // splitmix64 finaliser: nearby numbers get unrelated colours.
-    let mut z = (material as u64).wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    // splitmix64 (Steele, Lea and Flood 2014): its increment, then its finaliser, so
+    // nearby numbers get unrelated colours.
+    const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
+    const MIX: [u64; 2] = [0xBF58_476D_1CE4_E5B9, 0x94D0_49BB_1331_11EB];
+    let mut z = (material as u64).wrapping_add(GOLDEN_GAMMA);
+    z = (z ^ (z >> 30)).wrapping_mul(MIX[0]);
+    z = (z ^ (z >> 27)).wrapping_mul(MIX[1]);
     z ^= z >> 31;
     let unit = |bits: u64| (bits & 0xFFFF) as f64 / 65535.0;
     let hue = unit(z);

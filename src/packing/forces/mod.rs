@@ -148,7 +148,7 @@ impl Forces {
             .par_iter()
             .zip(self.bounds.par_iter_mut())
             .enumerate()
-            .with_min_len(256)
+            .with_min_len(PAIRS_PER_TASK)
             .filter_map(|(index, (p, bound))| {
                 let (i, j) = (p.i as usize, p.j as usize);
                 let (ei, ej) = (&shapes[i], &shapes[j]);
@@ -318,12 +318,21 @@ pub(crate) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     ]
 }
 
+/// Pairs one rayon task takes at least: one pair is a single contact-function call, too
+/// little work to be worth a task of its own.
+const PAIRS_PER_TASK: usize = 256;
+
+/// `2^64 / φ` (odd): multiplying by it spreads consecutive ids over all 64 bits.
+const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
+/// splitmix64's first mixing multiplier (Steele, Lea and Flood 2014).
+const SPLITMIX_MUL: u64 = 0xBF58_476D_1CE4_E5B9;
+
 /// A unit vector that depends only on the pair's ids (a hash), for coincident centres.
 fn fallback_direction(i: u32, j: u32) -> [f64; 3] {
-    let mut h = (u64::from(i) << 32 | u64::from(j)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    let mut h = (u64::from(i) << 32 | u64::from(j)).wrapping_mul(GOLDEN_GAMMA);
     let mut coord = || {
         h ^= h >> 29;
-        h = h.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        h = h.wrapping_mul(SPLITMIX_MUL);
         (h >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     };
     let v = [coord(), coord(), coord()];
