@@ -51,6 +51,7 @@ use state::{State, WALL_MARGIN};
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
 
+use crate::contact::ShapeError;
 use crate::octree::OctreeError;
 use crate::scene::{Domain, GrainSpec, PackingParams};
 use std::sync::atomic::AtomicBool;
@@ -114,12 +115,20 @@ pub enum PackError {
     #[error("no grains to pack")]
     Empty,
     /// A grain is invalid (non-positive semi-axis, non-unit quaternion).
-    #[error("grain {id}: {message}")]
+    #[error("grain {id}: {source}")]
     Grain {
         /// Its index.
         id: usize,
-        /// What is wrong.
-        message: String,
+        /// What is wrong with its shape.
+        source: ShapeError,
+    },
+    /// A packed grain's id is not its index in the slice.
+    #[error("grain {index}: id {id} is not its index")]
+    Misnumbered {
+        /// Its index.
+        index: usize,
+        /// Its id.
+        id: u32,
     },
     /// The box or the grains' bounding spheres were rejected by the broad phase.
     #[error("broad phase: {0}")]
@@ -180,9 +189,9 @@ pub fn pack(
     let order = spatial_order(&centres, domain.size);
     let sorted: Vec<GrainSpec> = order.iter().map(|&k| specs[k]).collect();
     let mut state = State::new(&sorted, domain).map_err(|e| match e {
-        PackError::Grain { id, message } => PackError::Grain {
+        PackError::Grain { id, source } => PackError::Grain {
             id: order[id],
-            message,
+            source,
         },
         e => e,
     })?;

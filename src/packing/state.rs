@@ -76,12 +76,9 @@ impl State {
 
     /// The prepared shape and half-widths of grain `id` at orientation `q`.
     fn shape_of(&self, id: usize, q: [f64; 4]) -> Result<(PreparedEllipsoid, [f64; 3]), PackError> {
-        let bad = |e: &dyn std::fmt::Display| PackError::Grain {
-            id,
-            message: e.to_string(),
-        };
-        let e = Ellipsoid::new(self.axes[id], q).map_err(|e| bad(&e))?;
-        let shape = PreparedEllipsoid::with_semi_axes(&e, self.axes[id]).map_err(|e| bad(&e))?;
+        let bad = |source| PackError::Grain { id, source };
+        let e = Ellipsoid::new(self.axes[id], q).map_err(bad)?;
+        let shape = PreparedEllipsoid::with_semi_axes(&e, self.axes[id]).map_err(bad)?;
         Ok((shape, [e.q[0].sqrt(), e.q[3].sqrt(), e.q[5].sqrt()]))
     }
 

@@ -38,11 +38,11 @@ impl Verification {
 pub fn verify(grains: &[PackedGrain], domain: &Domain) -> Result<Verification, PackError> {
     let mut shapes = Vec::with_capacity(grains.len());
     for (index, g) in grains.iter().enumerate() {
-        let bad = |message: String| PackError::Grain { id: index, message };
         if g.id as usize != index {
-            return Err(bad(format!("id {} is not its index", g.id)));
+            return Err(PackError::Misnumbered { index, id: g.id });
         }
-        shapes.push(Ellipsoid::new(g.semi_axes, g.quaternion).map_err(|e| bad(e.to_string()))?);
+        let bad = |source| PackError::Grain { id: index, source };
+        shapes.push(Ellipsoid::new(g.semi_axes, g.quaternion).map_err(bad)?);
     }
     let spheres: Vec<Sphere> = grains
         .iter()
@@ -165,7 +165,7 @@ mod tests {
         let misnumbered = [grain(3, [5.0; 3], [1.0; 3])];
         assert!(matches!(
             verify(&misnumbered, &domain(Boundary::Periodic)),
-            Err(PackError::Grain { id: 0, .. })
+            Err(PackError::Misnumbered { index: 0, id: 3 })
         ));
         let flat = [grain(0, [5.0; 3], [1.0, 0.0, 1.0])];
         assert!(verify(&flat, &domain(Boundary::Periodic)).is_err());
