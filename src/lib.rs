@@ -27,3 +27,12 @@ pub mod octree;
 pub mod packing;
 pub mod run;
 pub mod scene;
+
+// The code in the README and docs/architecture.md compiles as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/architecture.md")]
+struct ArchitectureDoc;
+
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct Readme;
