@@ -146,10 +146,41 @@ pub struct TuningError {
     pub expected: &'static str,
 }
 
+/// What a tunable must be.
+#[derive(Clone, Copy)]
+enum Range {
+    Positive,
+    NonNegative,
+    AtLeastOne,
+    Unit,
+}
+
+impl Range {
+    fn holds(self, x: f64) -> bool {
+        x.is_finite()
+            && match self {
+                Range::Positive => x > 0.0,
+                Range::NonNegative => x >= 0.0,
+                Range::AtLeastOne => x >= 1.0,
+                Range::Unit => x > 0.0 && x < 1.0,
+            }
+    }
+
+    fn text(self) -> &'static str {
+        match self {
+            Range::Positive => "positive and finite",
+            Range::NonNegative => "non-negative and finite",
+            Range::AtLeastOne => "at least 1 and finite",
+            Range::Unit => "in (0, 1)",
+        }
+    }
+}
+
 impl Tuning {
-    /// Checks every field: time steps `0 < dt_min ≤ dt_start ≤ dt_max`, factors on the
-    /// right side of 1, ratios in `(0, 1)`, step counts and window positive, margins
-    /// and the skin positive and finite, the gap non-negative.
+    /// Checks every field: time steps positive with `dt_min ≤ dt_start ≤ dt_max`,
+    /// growth at least 1, ratios in `(0, 1)`, step counts and window at least 1,
+    /// margins and the skin positive, the gap and the pull non-negative, all finite.
+    /// The octree's limits are checked by the octree when the loop first builds it.
     ///
     /// ```
     /// use grainpack::packing::Tuning;
@@ -159,111 +190,62 @@ impl Tuning {
     /// assert!(t.check().unwrap_err().to_string().contains("fire.dt_min = 1"));
     /// ```
     pub fn check(&self) -> Result<(), TuningError> {
+        use Range::*;
         let (f, p, n) = (&self.fire, &self.protocol, &self.neighbours);
-        let positive = |x: f64| x.is_finite() && x > 0.0;
-        let unit = |x: f64| x > 0.0 && x < 1.0;
-        let checks: [(&'static str, String, bool, &'static str); 16] = [
+        let fields = [
+            ("fire.dt_start", f.dt_start, Positive),
+            ("fire.dt_max", f.dt_max, Positive),
+            ("fire.dt_min", f.dt_min, Positive),
+            ("fire.n_delay", f64::from(f.n_delay), NonNegative),
+            ("fire.dt_grow", f.dt_grow, AtLeastOne),
+            ("fire.dt_shrink", f.dt_shrink, Unit),
+            ("fire.alpha_start", f.alpha_start, Unit),
+            ("fire.alpha_decay", f.alpha_decay, Unit),
+            ("fire.max_move", f.max_move, Positive),
+            ("fire.window", f.window as f64, AtLeastOne),
+            ("fire.stuck_ratio", f.stuck_ratio, Unit),
+            ("protocol.contact_gap", p.contact_gap, NonNegative),
+            ("protocol.margin", p.margin, Positive),
+            ("protocol.stage_steps", p.stage_steps as f64, AtLeastOne),
+            ("protocol.shrink_margin", p.shrink_margin, Unit),
+            (
+                "protocol.restore_stiffness",
+                p.restore_stiffness,
+                NonNegative,
+            ),
+            (
+                "protocol.restore_steps",
+                p.restore_steps as f64,
+                NonNegative,
+            ),
+            ("neighbours.skin", n.skin, Positive),
+        ];
+        let out_of_range = fields.into_iter().find(|(_, x, range)| !range.holds(*x));
+        if let Some((name, value, range)) = out_of_range {
+            return Err(TuningError {
+                name,
+                value: value.to_string(),
+                expected: range.text(),
+            });
+        }
+        let ordered = [
             (
                 "fire.dt_min",
-                f.dt_min.to_string(),
-                positive(f.dt_min) && f.dt_min <= f.dt_start,
-                "positive, at most dt_start",
+                f.dt_min,
+                f.dt_min <= f.dt_start,
+                "at most fire.dt_start",
             ),
             (
                 "fire.dt_start",
-                f.dt_start.to_string(),
+                f.dt_start,
                 f.dt_start <= f.dt_max,
-                "at most dt_max",
-            ),
-            (
-                "fire.dt_max",
-                f.dt_max.to_string(),
-                positive(f.dt_max),
-                "positive and finite",
-            ),
-            (
-                "fire.dt_grow",
-                f.dt_grow.to_string(),
-                f.dt_grow.is_finite() && f.dt_grow >= 1.0,
-                "at least 1 and finite",
-            ),
-            (
-                "fire.dt_shrink",
-                f.dt_shrink.to_string(),
-                unit(f.dt_shrink),
-                "in (0, 1)",
-            ),
-            (
-                "fire.alpha_start",
-                f.alpha_start.to_string(),
-                unit(f.alpha_start),
-                "in (0, 1)",
-            ),
-            (
-                "fire.alpha_decay",
-                f.alpha_decay.to_string(),
-                unit(f.alpha_decay),
-                "in (0, 1)",
-            ),
-            (
-                "fire.max_move",
-                f.max_move.to_string(),
-                positive(f.max_move),
-                "positive and finite",
-            ),
-            (
-                "fire.window",
-                f.window.to_string(),
-                f.window > 0,
-                "at least 1",
-            ),
-            (
-                "fire.stuck_ratio",
-                f.stuck_ratio.to_string(),
-                unit(f.stuck_ratio),
-                "in (0, 1)",
-            ),
-            (
-                "protocol.contact_gap",
-                p.contact_gap.to_string(),
-                p.contact_gap.is_finite() && p.contact_gap >= 0.0,
-                "non-negative and finite",
-            ),
-            (
-                "protocol.margin",
-                p.margin.to_string(),
-                positive(p.margin),
-                "positive and finite",
-            ),
-            (
-                "protocol.stage_steps",
-                p.stage_steps.to_string(),
-                p.stage_steps > 0,
-                "at least 1",
-            ),
-            (
-                "protocol.shrink_margin",
-                p.shrink_margin.to_string(),
-                unit(p.shrink_margin),
-                "in (0, 1)",
-            ),
-            (
-                "protocol.restore_stiffness",
-                p.restore_stiffness.to_string(),
-                p.restore_stiffness.is_finite() && p.restore_stiffness >= 0.0,
-                "non-negative and finite",
-            ),
-            (
-                "neighbours.skin",
-                n.skin.to_string(),
-                positive(n.skin),
-                "positive and finite",
+                "at most fire.dt_max",
             ),
         ];
-        match checks.into_iter().find(|c| !c.2) {
+        match ordered.into_iter().find(|c| !c.2) {
             Some((name, value, _, expected)) => Err(TuningError {
                 name,
-                value,
+                value: value.to_string(),
                 expected,
             }),
             None => Ok(()),
