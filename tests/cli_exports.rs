@@ -2,7 +2,6 @@
 //! is parsed here with a plain XML parser and base64 (not vtkio, which wrote it) and
 //! checked against `grains.csv`, read with nalgebra's rotations.
 
-#[allow(dead_code)] // the overlap check of the support module is not needed here
 mod support;
 
 use base64::engine::general_purpose::STANDARD;
