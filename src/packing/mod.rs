@@ -32,12 +32,14 @@
 mod fire;
 mod forces;
 mod grains;
+mod job;
 mod neighbours;
 mod state;
 mod tuning;
 mod verify;
 
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
+pub use job::{Counters, Job, PackError, Packing, Progress};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
 pub use verify::{verify, Verification};
 
@@ -51,111 +53,8 @@ use state::{State, WALL_MARGIN};
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
 
-use crate::contact::ShapeError;
-use crate::octree::OctreeError;
-use crate::scene::{Domain, GrainSpec, PackingParams};
+use crate::scene::GrainSpec;
 use std::sync::atomic::AtomicBool;
-use std::time::Duration;
-
-/// What the loop reports while it runs, for a progress bar.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Progress {
-    /// FIRE steps done.
-    pub step: u64,
-    /// The trial scale being relaxed (1 = target sizes).
-    pub scale: f64,
-    /// Packing fraction at that scale.
-    pub fraction: f64,
-    /// Pairs overlapping in the last step (at the scale inflated by
-    /// [`margin`](ProtocolParams::margin)).
-    pub overlaps: usize,
-}
-
-/// Counters and timers of the loop's stages.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Counters {
-    /// Relaxations (one per trial scale).
-    pub steps: u64,
-    /// FIRE steps over all relaxations (each a broad, narrow phase and response).
-    pub fire_steps: u64,
-    /// Builds of the candidate-pair list.
-    pub list_builds: u64,
-    /// Candidate pairs tested by the narrow phase.
-    pub pairs_tested: u64,
-    /// Time in the broad phase.
-    pub broad_phase: Duration,
-    /// Time in the narrow phase.
-    pub narrow_phase: Duration,
-    /// Time in the response (forces, moves).
-    pub response: Duration,
-}
-
-/// The outcome of [`pack`].
-#[derive(Debug, Clone)]
-pub struct Packing {
-    /// The grains, overlap-free, in the order of the specs given (id = index).
-    pub grains: Vec<PackedGrain>,
-    /// The global scale reached: 1 when every grain has its target size.
-    pub scale: f64,
-    /// Packing fraction: total grain volume over box volume.
-    pub fraction: f64,
-    /// Why the loop stopped.
-    pub stop: StopReason,
-    /// What the loop did.
-    pub counters: Counters,
-    /// The exact check of the written state.
-    pub verification: Verification,
-}
-
-/// Why packing could not start.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum PackError {
-    /// No grains to pack.
-    #[error("no grains to pack")]
-    Empty,
-    /// A grain is invalid (non-positive semi-axis, non-unit quaternion).
-    #[error("grain {id}: {source}")]
-    Grain {
-        /// Its index.
-        id: usize,
-        /// What is wrong with its shape.
-        source: ShapeError,
-    },
-    /// A packed grain's id is not its index in the slice.
-    #[error("grain {index}: id {id} is not its index")]
-    Misnumbered {
-        /// Its index.
-        index: usize,
-        /// Its id.
-        id: u32,
-    },
-    /// The box or the grains' bounding spheres were rejected by the broad phase.
-    #[error("broad phase: {0}")]
-    Domain(#[from] OctreeError),
-    /// More grains than ids can name.
-    #[error("{0} grains: at most 2^32 − 1 are supported")]
-    TooMany(usize),
-    /// A tunable is out of range.
-    #[error(transparent)]
-    Tuning(#[from] TuningError),
-}
-
-/// What to pack: the grains, the box, the scene's packing parameters, the engine's
-/// tunables and the seed of the starting positions.
-#[derive(Debug, Clone, Copy)]
-pub struct Job<'a> {
-    /// The grains as drawn (id = index).
-    pub specs: &'a [GrainSpec],
-    /// The box.
-    pub domain: &'a Domain,
-    /// The scene's `[packing]` table.
-    pub params: &'a PackingParams,
-    /// The engine's tunables ([`Tuning::default`] for the shipped behaviour).
-    pub tuning: &'a Tuning,
-    /// Seed of the starting positions.
-    pub seed: u64,
-}
 
 /// Packs the grains into the domain. See the module docs for the algorithm.
 ///
@@ -320,8 +219,9 @@ fn clean_scale(
 
 /// Turns the grains of a clean snapshot back toward their drawn orientations as far as
 /// their neighbours let them: `restore_steps` FIRE steps with a pull of stiffness
-/// `restore_stiffness` ([`ProtocolParams`]), then a plain relaxation at the same scale. Returns the state
-/// if that ends clean (within `budget` steps in all), `None` otherwise.
+/// `restore_stiffness` ([`ProtocolParams`]), then a plain relaxation at the same
+/// scale. Returns the state if that ends clean (within `budget` steps in all), `None`
+/// otherwise.
 fn turn_back(
     state: &mut State,
     fire: &mut Fire,

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::contact::rotation_column;
-use crate::scene::{Rotation, Scene};
+use crate::scene::{PackingParams, Rotation, Scene};
 
 /// 150 spheroids of aspect ratio 1.5 asked to fill 0.75 of a periodic cube: more than
 /// any random packing holds, so the loop runs until it jams.

@@ -5,7 +5,7 @@
 //! - **equivalent diameter** `2 (a1 a2 a3)^{1/3}` and **aspect ratio** `a1/a2`, measured
 //!   as `summary.json` measures them ([`equivalent_diameter`], [`aspect_ratio`]),
 //!   against the pdf of the law truncated and renormalised by its cutoffs
-//!   ([`Distribution::pdf`](crate::scene::Distribution::pdf));
+//!   ([`Distribution::pdf`](crate::laws::Distribution::pdf));
 //! - the **angle**: for a tilt orientation, the tilt angle ([`tilt_angle`]) against the
 //!   von Mises pdf; for any other orientation, the angle of the first semi-axis to z
 //!   ([`axis_polar_angle`]) against the isotropic density `sin θ` (random orientations)
@@ -17,9 +17,9 @@
 //! value. Voxel samples, when given, are drawn as a second histogram outline on the
 //! same bins. Legends give mean ± standard deviation.
 //!
-//! [`equivalent_diameter`]: crate::laws::equivalent_diameter
-//! [`aspect_ratio`]: crate::laws::aspect_ratio
-//! [`tilt_angle`]: crate::laws::tilt_angle
+//! [`equivalent_diameter`]: crate::contact::equivalent_diameter
+//! [`aspect_ratio`]: crate::scene::aspect_ratio
+//! [`tilt_angle`]: crate::scene::tilt_angle
 //!
 //! ```no_run
 //! use grainpack::io::plots::write_statistics_png;
@@ -74,7 +74,7 @@ pub struct VoxelSample {
     /// the axis of revolution to z, in `[0, π/2]` (as [`axis_polar_angle`]). `None`
     /// when not measured (e.g. a grain too small to have an axis).
     ///
-    /// [`tilt_angle`]: crate::laws::tilt_angle
+    /// [`tilt_angle`]: crate::scene::tilt_angle
     pub tilt: Option<f64>,
 }
 

@@ -91,7 +91,7 @@ struct CellData {
 /// [`periodic_shifts`] copies, as `20·4^resolution` triangles each. Cell data, per
 /// triangle: `grain_id` and `phase` (the CSV's), `volume` `4π/3·a1·a2·a3` and
 /// `equivalent_diameter` `2·(a1·a2·a3)^{1/3}` of the exact ellipsoid, `aspect_ratio`
-/// `a1/a2` (both as in the summary, [`crate::io::report::stats`]), and
+/// `a1/a2` (both as in the summary, [`crate::run::Statistics`]), and
 /// `periodic_image` (0 for the grain, 1 for a copy).
 pub fn write_grains_vtu(
     out: &mut dyn Write,
