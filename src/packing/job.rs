@@ -2,7 +2,7 @@
 //! reports, its counters, its result and its errors.
 
 use super::PackedGrain;
-use super::{StopReason, Tuning, TuningError, Verification};
+use super::{StopReason, Tuning, TuningError};
 use crate::contact::ShapeError;
 use crate::octree::OctreeError;
 use crate::scene::{Domain, GrainSpec, PackingParams};
@@ -106,4 +106,26 @@ pub struct Job<'a> {
     pub tuning: &'a Tuning,
     /// Seed of the starting positions.
     pub seed: u64,
+}
+
+/// What [`verify`](super::verify) found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Verification {
+    /// Pairs whose bounding spheres meet, each tested exactly.
+    pub checked_pairs: usize,
+    /// Pairs with μ² < 1 (must be 0).
+    pub overlapping_pairs: usize,
+    /// Smallest μ² over the checked pairs (∞ when there are none).
+    pub min_mu2: f64,
+    /// Grains crossing a wall of a walled box (must be 0; always 0 when periodic).
+    pub wall_violations: usize,
+    /// Grains overlapping their own periodic image (must be 0).
+    pub self_images: usize,
+}
+
+impl Verification {
+    /// No overlap of any kind.
+    pub fn is_clean(&self) -> bool {
+        self.overlapping_pairs == 0 && self.wall_violations == 0 && self.self_images == 0
+    }
 }

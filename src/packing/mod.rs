@@ -39,9 +39,9 @@ mod tuning;
 mod verify;
 
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
-pub use job::{Counters, Job, PackError, Packing, Progress};
+pub use job::{Counters, Job, PackError, Packing, Progress, Verification};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
-pub use verify::{verify, Verification};
+pub use verify::verify;
 
 use crate::scene::{Boundary, Rotation};
 use fire::{Context, Fire, Outcome};

@@ -1,33 +1,11 @@
 //! The exact check of a packed state: every pair whose bounding spheres meet, and the
 //! walls of a walled box.
 
-use super::{PackError, PackedGrain};
+use super::{PackError, PackedGrain, Verification};
 use crate::contact::{contact_function, Ellipsoid};
 use crate::octree::{Octree, Params, Sphere};
 use crate::scene::{Boundary, Domain};
 use rayon::prelude::*;
-
-/// What [`verify`] found.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Verification {
-    /// Pairs whose bounding spheres meet, each tested exactly.
-    pub checked_pairs: usize,
-    /// Pairs with μ² < 1 (must be 0).
-    pub overlapping_pairs: usize,
-    /// Smallest μ² over the checked pairs (∞ when there are none).
-    pub min_mu2: f64,
-    /// Grains crossing a wall of a walled box (must be 0; always 0 when periodic).
-    pub wall_violations: usize,
-    /// Grains overlapping their own periodic image (must be 0).
-    pub self_images: usize,
-}
-
-impl Verification {
-    /// No overlap of any kind.
-    pub fn is_clean(&self) -> bool {
-        self.overlapping_pairs == 0 && self.wall_violations == 0 && self.self_images == 0
-    }
-}
 
 /// Checks a packed state exactly: the accurate contact function on every pair whose
 /// bounding spheres meet (periodic images included), and each grain's extent
