@@ -1,5 +1,9 @@
 //! Contact cases as CSV: `r0,r1,r2,q1_0,…,q1_5,q2_0,…,q2_5` and any extra columns.
 
+mod answers;
+
+pub use answers::{write_answers, RowError, RESULT_COLUMNS};
+
 use crate::contact::{Sym3, Vec3};
 use std::io::Read;
 use thiserror::Error;
