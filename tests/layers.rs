@@ -315,3 +315,37 @@ fn the_scan_sees_nested_groups_and_super_paths() {
         ]
     );
 }
+
+#[test]
+fn every_unsafe_block_says_why_it_is_sound() {
+    let mut sources = Vec::new();
+    read_sources(Path::new("src"), &[], &mut sources);
+    let mut bare = Vec::new();
+    let mut count = 0;
+    for src in &sources {
+        let text = fs::read_to_string(&src.file).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        for (k, line) in lines.iter().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            if !(code.contains("unsafe {") || code.contains("unsafe fn")) {
+                continue;
+            }
+            count += 1;
+            // The comment lines right above the block (or its statement).
+            let above = lines[..k]
+                .iter()
+                .rev()
+                .take_while(|l| l.trim_start().starts_with("//"))
+                .any(|l| l.contains("SAFETY:"));
+            if !above {
+                bare.push(format!("{}:{}", src.file, k + 1));
+            }
+        }
+    }
+    assert!(count > 0, "the scan found no unsafe code at all");
+    assert!(
+        bare.is_empty(),
+        "unsafe without a SAFETY comment:\n{}",
+        bare.join("\n")
+    );
+}

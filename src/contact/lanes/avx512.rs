@@ -1,7 +1,7 @@
 //! [`super::F`] as one AVX-512 register.
 //!
-//! SAFETY (every block here): the module is compiled only where the build targets
-//! AVX-512F (which implies FMA); loads and stores touch arrays of exactly eight elements.
+//! Compiled only where the build targets these instructions (see the `cfg` of `imp` in
+//! `lanes`); each `unsafe` block says why it is sound.
 
 use std::arch::x86_64::*;
 
@@ -10,17 +10,23 @@ pub type RawMask = __mmask8;
 
 #[inline(always)]
 pub fn splat(x: f64) -> Raw {
+    // SAFETY: a register-only intrinsic (no memory access); AVX-512F is enabled at compile
+    // time (the module's cfg), so every machine the build runs on has it.
     unsafe { _mm512_set1_pd(x) }
 }
 
 #[inline(always)]
 pub fn load(x: [f64; 8]) -> Raw {
+    // SAFETY: `x` holds exactly the eight doubles the unaligned load reads; AVX-512F is
+    // enabled at compile time (the module's cfg).
     unsafe { _mm512_loadu_pd(x.as_ptr()) }
 }
 
 #[inline(always)]
 pub fn store(x: Raw) -> [f64; 8] {
     let mut out = [0.0; 8];
+    // SAFETY: `out` has room for exactly the eight doubles the unaligned store writes;
+    // AVX-512F is enabled at compile time (the module's cfg).
     unsafe { _mm512_storeu_pd(out.as_mut_ptr(), x) };
     out
 }
@@ -30,6 +36,8 @@ macro_rules! binary {
     ($($name:ident => $intrinsic:ident $(::<$c:ident>)?: $out:ty),* $(,)?) => {$(
         #[inline(always)]
         pub fn $name(x: Raw, y: Raw) -> $out {
+            // SAFETY: a register-only intrinsic (no memory access); AVX-512F is enabled at
+            // compile time (the module's cfg), so every machine the build runs on has it.
             unsafe { $intrinsic$(::<$c>)?(x, y) }
         }
     )*};
@@ -44,22 +52,30 @@ binary!(
 
 #[inline(always)]
 pub fn mul_add(x: Raw, y: Raw, z: Raw) -> Raw {
+    // SAFETY: a register-only intrinsic (no memory access); AVX-512F is enabled at compile
+    // time (the module's cfg), so every machine the build runs on has it.
     unsafe { _mm512_fmadd_pd(x, y, z) }
 }
 
 #[inline(always)]
 pub fn sqrt(x: Raw) -> Raw {
+    // SAFETY: a register-only intrinsic (no memory access); AVX-512F is enabled at compile
+    // time (the module's cfg), so every machine the build runs on has it.
     unsafe { _mm512_sqrt_pd(x) }
 }
 
 #[inline(always)]
 pub fn abs(x: Raw) -> Raw {
+    // SAFETY: a register-only intrinsic (no memory access); AVX-512F is enabled at compile
+    // time (the module's cfg), so every machine the build runs on has it.
     unsafe { _mm512_abs_pd(x) }
 }
 
 /// The sign bit flipped, as `-x` does (also for zeros and NaNs).
 #[inline(always)]
 pub fn neg(x: Raw) -> Raw {
+    // SAFETY: a register-only intrinsic (no memory access); AVX-512F is enabled at compile
+    // time (the module's cfg), so every machine the build runs on has it.
     unsafe {
         let sign = _mm512_set1_epi64(i64::MIN);
         _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(x), sign))
@@ -75,6 +91,8 @@ binary!(
 
 #[inline(always)]
 pub fn select(m: RawMask, yes: Raw, no: Raw) -> Raw {
+    // SAFETY: a register-only intrinsic (no memory access); AVX-512F is enabled at compile
+    // time (the module's cfg), so every machine the build runs on has it.
     unsafe { _mm512_mask_blend_pd(m, no, yes) }
 }
 
