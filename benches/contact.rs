@@ -4,7 +4,6 @@
 //! `BENCHMARKS.md` (between its markers) and draws `docs/contact_error_vs_time.png`.
 //! Set `CONTACT_BENCH_DRY=1` to print only.
 
-#[path = "common/mod.rs"]
 mod common;
 
 use grainpack::contact::{

@@ -5,7 +5,6 @@
 //! of `BENCHMARKS.md` (`PACKING_BENCH_DRY=1`: print only; `PACKING_BENCH_MAX=N`: the
 //! scaling stops at N grains, default 100 000).
 
-#[path = "common/mod.rs"]
 mod common;
 
 use grainpack::packing::sorted_turns;

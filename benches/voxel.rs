@@ -8,7 +8,6 @@
 //! (`VOXEL_BENCH_DRY=1`: print only). `VOXEL_BENCH_OUT=dir` also writes
 //! `rve_<cells>_<fill>.vti` and `sections_<cells>_<fill>.png` there, to look at.
 
-#[path = "common/mod.rs"]
 mod common;
 
 use grainpack::io::voxel::{grain_report, voxelise, write_sections_png, write_vti};
