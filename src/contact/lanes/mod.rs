@@ -179,9 +179,11 @@ impl Neg for F {
     }
 }
 
+// One implementation per build: AVX-512, else AVX2 with FMA, else plain arrays.
 #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
-#[path = "lanes/avx512.rs"]
-mod imp;
+mod avx512;
+#[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+use avx512 as imp;
 
 #[cfg(all(
     target_arch = "x86_64",
@@ -189,8 +191,14 @@ mod imp;
     target_feature = "fma",
     not(target_feature = "avx512f")
 ))]
-#[path = "lanes/avx2.rs"]
-mod imp;
+mod avx2;
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma",
+    not(target_feature = "avx512f")
+))]
+use avx2 as imp;
 
 #[cfg(not(all(
     target_arch = "x86_64",
@@ -199,8 +207,15 @@ mod imp;
         all(target_feature = "avx2", target_feature = "fma")
     )
 )))]
-#[path = "lanes/portable.rs"]
-mod imp;
+mod portable;
+#[cfg(not(all(
+    target_arch = "x86_64",
+    any(
+        target_feature = "avx512f",
+        all(target_feature = "avx2", target_feature = "fma")
+    )
+)))]
+use portable as imp;
 
 /// Whether the build targets vector registers for the lanes (AVX-512, or AVX2 with
 /// FMA); without, they are plain arrays.
