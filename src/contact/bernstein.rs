@@ -16,7 +16,7 @@
 //! coefficient in `[1, 2)`, which leaves `φ′, φ″, φ‴` unchanged and keeps the products
 //! of [`Rational::halley`] in range.
 
-use super::scale::ldexp;
+use super::scale::{exponent, ldexp, pow2};
 use super::sym::{frobenius, quadratic_form, Arith, PencilParts};
 use super::{Sym3, Vec3};
 
@@ -249,7 +249,7 @@ pub(crate) fn largest(c: &[f64]) -> f64 {
 /// and that power of two.
 #[inline(always)]
 pub(crate) fn scale_of(max: f64) -> (i32, f64) {
-    let e = exponent(max);
+    let e = normal_exponent(max);
     (e, pow2(-e))
 }
 
@@ -264,18 +264,12 @@ pub(crate) fn cubic<T: Arith>(b: &[T; 4], t: T, s: T) -> T {
 /// `2^-e` is normal; 0 for anything else (zero, subnormal, NaN, infinity), which then
 /// goes through unscaled and is caught downstream.
 #[inline(always)]
-fn exponent(x: f64) -> i32 {
+fn normal_exponent(x: f64) -> i32 {
     if x.is_normal() {
-        (((x.to_bits() >> 52) & 0x7ff) as i32 - 1023).clamp(-1022, 1022)
+        exponent(x).clamp(f64::MIN_EXP - 1, f64::MAX_EXP - 2)
     } else {
         0
     }
-}
-
-/// `2^k` for `k` in `[-1022, 1023]`.
-#[inline(always)]
-pub(crate) fn pow2(k: i32) -> f64 {
-    f64::from_bits(((k + 1023) as u64) << 52)
 }
 
 #[cfg(test)]

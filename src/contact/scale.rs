@@ -242,9 +242,9 @@ fn check_finite(what: &'static str, values: &[f64]) -> Result<(), ContactError> 
     })
 }
 
-/// `2^k` for `k` in the normal range.
+/// `2^k` for `k` in the normal range, `[-1022, 1023]`.
 #[inline(always)]
-fn pow2(k: i32) -> f64 {
+pub(crate) fn pow2(k: i32) -> f64 {
     f64::from_bits(((k + 1023) as u64) << 52)
 }
 
@@ -263,7 +263,7 @@ pub(crate) fn ldexp(mut x: f64, mut e: i32) -> f64 {
 }
 
 /// `floor(log2 |x|)` for finite non-zero `x`, subnormals included.
-fn exponent(x: f64) -> i32 {
+pub(crate) fn exponent(x: f64) -> i32 {
     let bits = x.abs().to_bits();
     let biased = (bits >> 52) as i32;
     if biased == 0 {

@@ -5,7 +5,7 @@ use nalgebra::{Matrix3, Rotation3, Vector3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-pub(crate) type Pair = (Vec3, Sym3, Sym3);
+pub(crate) type RelativePair = (Vec3, Sym3, Sym3);
 
 pub(crate) fn sphere(radius: f64) -> Sym3 {
     let s = radius * radius;
@@ -17,7 +17,7 @@ pub(crate) fn random_rotation(rng: &mut StdRng) -> Rotation3<f64> {
 }
 
 /// The pair turned by `rot`: `r → R r`, `Q → R Q Rᵀ`.
-pub(crate) fn rotate(rot: &Rotation3<f64>, (r, q1, q2): &Pair) -> Pair {
+pub(crate) fn rotate(rot: &Rotation3<f64>, (r, q1, q2): &RelativePair) -> RelativePair {
     let m = rot.matrix();
     let turn = |q: &Sym3| {
         let f = m * Matrix3::new(q[0], q[1], q[2], q[1], q[3], q[4], q[2], q[4], q[5]);
@@ -37,7 +37,7 @@ pub(crate) fn rotate(rot: &Rotation3<f64>, (r, q1, q2): &Pair) -> Pair {
 /// Random pairs: semi-axes log-uniform in `[0.1, 10]`, random orientations, `r12` of
 /// random direction and length in `[0, 25]`, each with `κ = (a_max / a_min)²`, a bound
 /// on the condition number of every `(1−λ)Q1 + λQ2`.
-pub(crate) fn random_pairs(seed: u64, n: usize) -> Vec<(Pair, f64)> {
+pub(crate) fn random_pairs(seed: u64, n: usize) -> Vec<(RelativePair, f64)> {
     let mut rng = StdRng::seed_from_u64(seed);
     let mut one = |_| {
         let a: [f64; 6] = std::array::from_fn(|_| 10f64.powf(rng.random_range(-1.0..1.0)));

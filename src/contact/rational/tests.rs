@@ -2,18 +2,18 @@
 
 use super::*;
 use crate::contact::sym::{adjugate, det, quadratic_form};
-use crate::contact::test_pairs::{random_pairs, random_rotation, rotate, sphere, Pair};
+use crate::contact::test_pairs::{random_pairs, random_rotation, rotate, sphere, RelativePair};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-fn run((r, q1, q2): &Pair) -> Contact {
+fn run((r, q1, q2): &RelativePair) -> Contact {
     let c = contact_function_rational(r, q1, q2).unwrap();
     assert_eq!(c.stop, Stop::Converged, "{c:?}");
     c
 }
 
 /// `f(λ)` from `adj` and `det` of `(1−λ)Q1 + λQ2` itself (no polynomial coefficients).
-fn f_direct((r, q1, q2): &Pair, lambda: f64) -> f64 {
+fn f_direct((r, q1, q2): &RelativePair, lambda: f64) -> f64 {
     let q: Sym3 = std::array::from_fn(|i| (1.0 - lambda) * q1[i] + lambda * q2[i]);
     let adj = adjugate(&q);
     lambda * (1.0 - lambda) * quadratic_form(&adj, r) / det(&q, &adj)

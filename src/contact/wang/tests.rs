@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::contact::rational::contact_function_rational;
-use crate::contact::test_pairs::{random_pairs, random_rotation, rotate, sphere, Pair};
+use crate::contact::test_pairs::{random_pairs, random_rotation, rotate, sphere, RelativePair};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -14,11 +14,11 @@ fn scale_of(p: &[f64; 5]) -> f64 {
     p.iter().fold(0.0_f64, |m, c| m.max(c.abs()))
 }
 
-fn poly((r, q1, q2): &Pair) -> [f64; 5] {
+fn poly((r, q1, q2): &RelativePair) -> [f64; 5] {
     characteristic_polynomial(r, q1, q2).unwrap()
 }
 
-fn sep((r, q1, q2): &Pair) -> bool {
+fn sep((r, q1, q2): &RelativePair) -> bool {
     separated(r, q1, q2).unwrap()
 }
 
@@ -26,7 +26,7 @@ fn sep((r, q1, q2): &Pair) -> bool {
 /// condition number κ, and the translated quadric's constant term `rᵀQ⁻¹r − 1` cancels
 /// against the rest in proportion to `ρ = max_i rᵀQi⁻¹r`, so
 /// `|Δp_k| ≈ κ (1 + ρ) ε · max_k |p_k|`. Tests allow a multiple of this.
-fn coefficient_err((r, q1, q2): &Pair, kappa: f64, p: &[f64; 5]) -> f64 {
+fn coefficient_err((r, q1, q2): &RelativePair, kappa: f64, p: &[f64; 5]) -> f64 {
     let rho = |q: &Sym3| quadratic_form(&adjugate(q), r) / det(q, &adjugate(q));
     kappa * (1.0 + rho(q1).max(rho(q2))) * f64::EPSILON * scale_of(p)
 }

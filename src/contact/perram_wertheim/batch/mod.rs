@@ -9,10 +9,11 @@
 //! scalar code; its lane computes a stand-in pair, whose result is dropped.
 
 use super::*;
-use crate::contact::bernstein::{coefficients, largest, pow2, scale_of, Poly, MIN_SCALED_PRODUCT};
+use crate::contact::bernstein::{coefficients, largest, scale_of, Poly, MIN_SCALED_PRODUCT};
 use crate::contact::lanes::{gather, Mask, F, IN_REGISTERS, LANES};
 use crate::contact::ldl::pivot_floor;
 use crate::contact::refine::{at_lanes, Pair, Start};
+use crate::contact::scale::pow2;
 use crate::contact::scale::{finish, ldexp};
 
 /// [`contact_function`] of every pair `(r12, q1, q2)`, in order: bitwise the same
