@@ -74,6 +74,12 @@ impl Rational {
     #[inline(always)]
     pub fn new(r: &Vec3, q1: &Sym3, q2: &Sym3, parts: &PencilParts, ends: [f64; 4]) -> Self {
         let (a, b) = coefficients(r, q1, q2, parts, ends);
+        Self::from_coefficients(a, b)
+    }
+
+    /// From the unscaled coefficients of [`coefficients`].
+    #[inline(always)]
+    pub fn from_coefficients(a: [f64; 3], b: [f64; 4]) -> Self {
         let (a_exp, sa) = scale_of(largest(&a));
         let (b_exp, sb) = scale_of(largest(&b));
         Self {

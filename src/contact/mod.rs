@@ -10,6 +10,8 @@ mod dd;
 mod direct;
 mod ellipsoid;
 mod error;
+#[cfg(test)]
+mod explore;
 mod geometry;
 mod lanes;
 mod ldl;
@@ -37,7 +39,8 @@ pub use method::{Answer, Method, Timing, UnknownMethod};
 pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};
 pub use perram_wertheim::{
     contact_function, contact_function_fast, contact_functions, contact_functions_fast,
-    CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS,
+    fast_condition, CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL, FAST_MAX_CONDITION, FAST_ROUNDING,
+    FAST_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS,
 };
 pub use prepared::PreparedEllipsoid;
 pub use refine::REFINEMENT_TOL;

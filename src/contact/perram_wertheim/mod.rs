@@ -9,7 +9,7 @@
 //! on the sign of `f′` (Newton, then bisection, when a step leaves it). The corrector
 //! runs Newton on the residual `g = −f′` evaluated by [`super::refine`].
 
-use super::bernstein::{Halley, Rational};
+use super::bernstein::{coefficients, Halley, Rational};
 use super::ldl::Ldl;
 use super::refine::{refined_ldl, Refined, Refiner};
 use super::scale::{needs_no_rescaling, Prepared};
@@ -111,36 +111,64 @@ fn solve_otherwise(
 
 #[inline(always)]
 fn solve_prepared(p: &Prepared, accurate: bool) -> Result<Contact, ContactError> {
-    let (parts, rational, t0) = start(p);
     if !accurate {
-        let (t, stop, iterations) = predict(&rational, t0, HALLEY_FINAL_GAIN)?;
+        let (parts, (a, b), t0) = pieces(p);
+        if !well_conditioned(&sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b)) {
+            return accurate_instead(p);
+        }
+        let rational = Rational::from_coefficients(a, b);
+        let (t, stop, iterations) = predict(&rational, t0, HALLEY_FINAL_GAIN, true)?;
         return p.finish(rational.f(t), t, stop, iterations);
     }
+    let (parts, rational, t0) = start(p);
     // Built before the predictor runs, so that its work fills the predictor's latency.
     let refiner = Refiner::new(p, &parts, &rational);
-    let (t, stop, iterations) = predict(&rational, t0, CORRECTOR_SWITCH_GAIN)?;
+    let (t, stop, iterations) = predict(&rational, t0, CORRECTOR_SWITCH_GAIN, false)?;
     if stop != Stop::Converged {
         return p.finish(rational.f(t), t, stop, iterations);
     }
     correct(p, &refiner, t, iterations)
 }
 
+/// The fast path's answer for a pair whose `κ` is above [`FAST_MAX_CONDITION`]: the
+/// accurate one, bitwise [`contact_function`]'s.
+#[cold]
+#[inline(never)]
+fn accurate_instead(p: &Prepared) -> Result<Contact, ContactError> {
+    solve_prepared(p, true)
+}
+
 /// The pieces of the rational form of a prepared pair, and the maximiser for two
 /// spheres where the predictor starts.
 #[inline(always)]
 fn start(p: &Prepared) -> (PencilParts, Rational, f64) {
+    let (parts, (a, b), t0) = pieces(p);
+    (parts, Rational::from_coefficients(a, b), t0)
+}
+
+/// [`start`] with the coefficients of the rational form unscaled.
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn pieces(p: &Prepared) -> (PencilParts, ([f64; 3], [f64; 4]), f64) {
     let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
     let parts = PencilParts::new(&p.q1, &p.q2);
-    let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, [p.l1.det(), p.l2.det(), a, b]);
-    (parts, rational, b.sqrt() / (a.sqrt() + b.sqrt()))
+    let ends = [p.l1.det(), p.l2.det(), a, b];
+    let coefficients = coefficients(&p.r, &p.q1, &p.q2, &parts, ends);
+    (parts, coefficients, b.sqrt() / (a.sqrt() + b.sqrt()))
 }
 
 /// Halley's method on `φ′ = (ln f)′` from `t`, bracketed. Stops once the gain predicted
 /// at an evaluation is below [`GAIN_TOL`], or below `switch` where the Halley step is
-/// accepted (the step is taken, with no evaluation after it). Returns the last iterate,
-/// why it stopped and the evaluations done.
+/// accepted (the step is taken, with no evaluation after it) and, if `remainder`, the
+/// gain that step leaves is estimated below [`GAIN_TOL`] too (see [`step_leaves_little`]).
+/// Returns the last iterate, why it stopped and the evaluations done.
 #[inline(always)]
-fn predict(rational: &Rational, mut t: f64, switch: f64) -> Result<(f64, Stop, u32), ContactError> {
+fn predict(
+    rational: &Rational,
+    mut t: f64,
+    switch: f64,
+    remainder: bool,
+) -> Result<(f64, Stop, u32), ContactError> {
     let (mut lo, mut hi) = (0.0, 1.0);
     let mut iterations = 0;
     while iterations < MAX_ITERATIONS {
@@ -182,7 +210,9 @@ fn predict(rational: &Rational, mut t: f64, switch: f64) -> Result<(f64, Stop, u
         let converged = d1 == 0.0
             || (curvature > 0.0
                 && (gain2 <= 2.0 * GAIN_TOL * curvature
-                    || (halley_ok && gain2 <= 2.0 * switch * curvature)));
+                    || (halley_ok
+                        && gain2 <= 2.0 * switch * curvature
+                        && (!remainder || step_leaves_little(d1, d2, d3, gain2, curvature)))));
         let stalled = next == t || hi - lo <= f64::EPSILON * hi;
         t = next;
         if converged || stalled {
@@ -190,6 +220,22 @@ fn predict(rational: &Rational, mut t: f64, switch: f64) -> Result<(f64, Stop, u
         }
     }
     Ok((t, Stop::MaxIterations, iterations))
+}
+
+/// Whether a Halley step from a point of predicted gain `G` leaves a gain of at most
+/// [`GAIN_TOL`]. Halley's error after the step is about `C δ³`, `δ = φ′/φ″` the Newton
+/// step and `C ≈ φ‴² / (4φ″²)` (the term in `φ⁗` left out is of the same order and of
+/// opposite sign where the poles dominate, so this overestimates there), which leaves the
+/// gain `|φ″| C² δ⁶ / 2 = x⁴ G / 16` with `x = φ′φ‴ / φ″² = D1 D3 / D2²`. Away from the
+/// ends `x ~ δ` and this is `~G³`; within `1/ρ` of an end, for sizes in ratio ρ, the
+/// poles of `1/s` and of `b′/b` nearly cancel in φ″, `x ~ √(ρ G)`, and the step from
+/// `G = 1e-6` left up to 8e-8 before this test (the `size_ratio` reference pairs).
+#[inline(always)]
+fn step_leaves_little(d1: f64, d2: f64, d3: f64, gain2: f64, curvature: f64) -> bool {
+    let x = d1 * d3 / (d2 * d2);
+    let x2 = x * x;
+    // x⁴ G / 16 ≤ GAIN_TOL with G = gain2 / (2 curvature).
+    x2 * x2 * gain2 <= (32.0 * GAIN_TOL) * curvature
 }
 
 /// Newton on the refined residual from the predictor's λ, until the refined gain is
@@ -281,10 +327,13 @@ fn correct_further(
 }
 
 mod batch;
+mod condition;
 #[cfg(test)]
 mod timing;
 
 pub use batch::{contact_functions, contact_functions_fast};
+use condition::{sizes, well_conditioned};
+pub use condition::{fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL};
 
 #[cfg(test)]
 mod tests {

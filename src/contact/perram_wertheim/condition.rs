@@ -1,0 +1,119 @@
+//! When [`contact_function_fast`](super::contact_function_fast) can trust its own
+//! evaluation of `f`, and what it does when it cannot.
+//!
+//! The predictor evaluates `f = st·a/b` from seven Bernstein coefficients, all positive,
+//! so a relative error `η_k` in each coefficient moves `f` by at most `max_k η_k`
+//! relative (a positive combination cannot amplify it). The coefficients are sums of
+//! products whose terms may cancel: for two nearly identical ellipsoids with nearly
+//! parallel axes the mixed ones are about twice and three times the end ones while their
+//! terms are `cond(Q)` times larger, so rounding leaves `ε cond(Q)²` in `f`. Each
+//! coefficient `X_k` has a bound `X̃_k` on the size of its terms that costs a few
+//! products (below), and the fast path's rounding error is
+//!
+//! `|f̂ − f| / f ≤ FAST_ROUNDING · ε · κ`, `κ = max_k X̃_k / X_k`
+//!
+//! where, with `d(Q) = (Q_00, Q_11, Q_22)` and `c(Q) = (Q_11 Q_22, Q_00 Q_22, Q_00 Q_11)`:
+//! - ends (`A0, B0`; `A2, B3`): `κ(Q) = Σ_i Q_ii (adj Q)_ii / det Q = tr(diag(Q) Q⁻¹)`,
+//!   the condition number of `Q` scaled to a unit diagonal (≥ 3, 3 for a diagonal `Q`),
+//!   which bounds the rounding of the LDLᵀ factors the end coefficients come from;
+//! - `A1 = rᵀ M r` (`M` the mixed adjugate): `Ã1 = Σ_i r_i² m_i`, with `m_i` the sum of
+//!   the diagonal products in `M_ii` (`m_0 = Q1_11 Q2_22 + Q1_22 Q2_11`, ...);
+//! - `B1 = ⟨adj Q1, Q2⟩`: `B̃1 = d(Q2)·c(Q1)`; `B2 = ⟨Q1, adj Q2⟩`: `B̃2 = d(Q1)·c(Q2)`.
+//!
+//! Each `X̃_k` bounds the absolute terms of `X_k` up to a small factor, because the
+//! off-diagonal entries of a positive-definite matrix are at most the geometric mean of
+//! their diagonal neighbours.
+
+/// The constant of the rounding bound `|f̂ − f| / f ≤ FAST_ROUNDING · ε · κ` (module
+/// docs). The measured ratio `|f̂ − f| / (ε κ f)` is at most 1.1 on the reference sets
+/// and on nearly identical pairs of every aspect ratio up to 1e4 and perturbation
+/// from 0 to 1e-2 (`tests/contact_reference.rs`); 4 leaves room for rounding that
+/// accumulates differently.
+pub const FAST_ROUNDING: f64 = 4.0;
+
+/// The relative error of μ² that [`contact_function_fast`](super::contact_function_fast)
+/// guarantees when it reports [`Stop::Converged`](crate::contact::Stop): `2^18 ε ≈
+/// 5.8e-11`. Half of it goes to rounding ([`FAST_MAX_CONDITION`]), the rest to the
+/// truncation of the iteration (at most [`GAIN_TOL`](super::GAIN_TOL)).
+pub const FAST_TOL: f64 = 262_144.0 * f64::EPSILON;
+
+/// The largest `κ` (module docs) the fast path answers itself:
+/// `FAST_TOL / (2 · FAST_ROUNDING · ε) = 2^15`. Above it, the pair is answered by the
+/// accurate path ([`contact_function`](super::contact_function), a few ulps). On the
+/// typical reference set κ stays below 3.6e3, so no typical pair is handed over.
+pub const FAST_MAX_CONDITION: f64 = FAST_TOL / (2.0 * FAST_ROUNDING * f64::EPSILON);
+
+use crate::contact::scale::Prepared;
+use crate::contact::sym::{Arith, PencilParts};
+use crate::contact::{ContactError, Sym3, Vec3};
+
+/// The seven coefficients' sizes that [`κ`](self) compares, as five pairs
+/// `(X̃_k, X_k)`: both ends (`κ(Q1)`, `κ(Q2)` as `Σ Q_ii (adj Q)_ii` against `det Q`),
+/// then `A1`, `B1`, `B2`.
+#[inline(always)]
+pub(crate) fn sizes<T: Arith>(
+    r: &[T; 3],
+    q1: &[T; 6],
+    q2: &[T; 6],
+    parts: &PencilParts<T>,
+    a: &[T; 3],
+    b: &[T; 4],
+) -> [(T, T); 5] {
+    let (d1, d2) = ([q1[0], q1[3], q1[5]], [q2[0], q2[3], q2[5]]);
+    let (adj1, adj2) = (&parts.adj1, &parts.adj2);
+    let end1 = d1[0] * adj1[0] + d1[1] * adj1[3] + d1[2] * adj1[5];
+    let end2 = d2[0] * adj2[0] + d2[1] * adj2[3] + d2[2] * adj2[5];
+    let c1 = [d1[1] * d1[2], d1[0] * d1[2], d1[0] * d1[1]];
+    let c2 = [d2[1] * d2[2], d2[0] * d2[2], d2[0] * d2[1]];
+    let m = [
+        d1[1] * d2[2] + d1[2] * d2[1],
+        d1[0] * d2[2] + d1[2] * d2[0],
+        d1[0] * d2[1] + d1[1] * d2[0],
+    ];
+    let a1 = r[0] * r[0] * m[0] + r[1] * r[1] * m[1] + r[2] * r[2] * m[2];
+    let b1 = d2[0] * c1[0] + d2[1] * c1[1] + d2[2] * c1[2];
+    let b2 = d1[0] * c2[0] + d1[1] * c2[1] + d1[2] * c2[2];
+    [(end1, b[0]), (end2, b[3]), (a1, a[1]), (b1, b[1]), (b2, b[2])]
+}
+
+/// Whether `κ ≤ FAST_MAX_CONDITION`, from [`sizes`]. False for a coefficient that is
+/// not positive or not finite.
+#[inline(always)]
+pub(crate) fn well_conditioned(sizes: &[(f64, f64); 5]) -> bool {
+    sizes
+        .iter()
+        .fold(true, |ok, &(bound, x)| ok & (bound <= FAST_MAX_CONDITION * x))
+}
+
+/// The condition number `κ` (module docs) that decides whether
+/// [`contact_function_fast`](super::contact_function_fast) answers a pair itself: it does
+/// when `κ ≤` [`FAST_MAX_CONDITION`], with relative error at most
+/// `FAST_ROUNDING · ε · κ + GAIN_TOL ≤ FAST_TOL`, and hands the pair to the accurate path
+/// otherwise. Infinite when a coefficient is not positive; a zero coefficient whose terms
+/// are all zero (`r12 = 0`) is left out.
+///
+/// ```
+/// use grainpack::contact::{fast_condition, Ellipsoid, FAST_MAX_CONDITION};
+/// let ball = Ellipsoid::sphere(1.0).unwrap();
+/// assert!(fast_condition(&[3.0, 0.0, 0.0], &ball.q, &ball.q).unwrap() <= 3.0);
+/// // Two parallel needles of aspect ratio 1000, turned off the axes: κ ≈ cond(Q)².
+/// let needle = Ellipsoid::new([1.0, 1e-3, 1e-3], [0.9, 0.3, 0.3, 0.1]).unwrap();
+/// let k = fast_condition(&[0.0, 0.0, 1.0], &needle.q, &needle.q).unwrap();
+/// assert!(k > FAST_MAX_CONDITION);
+/// ```
+pub fn fast_condition(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<f64, ContactError> {
+    let p = Prepared::new(r12, q1, q2)?;
+    let (parts, (a, b), _) = super::pieces(&p);
+    let all = sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b);
+    Ok(all.iter().fold(0.0, |k: f64, &(bound, x)| {
+        if bound == 0.0 && x == 0.0 {
+            return k;
+        }
+        let ratio = bound / x;
+        if ratio >= 0.0 && x > 0.0 {
+            k.max(ratio)
+        } else {
+            f64::INFINITY
+        }
+    }))
+}
