@@ -32,6 +32,14 @@ pub enum ContactError {
         /// The quantity that overflowed.
         what: &'static str,
     },
+    /// Both quadratic forms are singular along a common direction (two coplanar flat
+    /// discs, two needles, a point and anything singular): `(1−λ)Q1 + λQ2` is singular
+    /// for every λ, and μ² is not defined.
+    #[error(
+        "q1 and q2 are both singular along a common direction: (1−λ)q1 + λq2 is singular \
+         for every λ, so μ² is not defined"
+    )]
+    CommonNullDirection,
     /// The centres coincide, so the contact normal is undefined.
     #[error("the centres coincide: the contact normal is undefined")]
     CoincidentCentres,

@@ -10,8 +10,6 @@ mod dd;
 mod direct;
 mod ellipsoid;
 mod error;
-#[cfg(test)]
-mod explore;
 mod geometry;
 mod lanes;
 mod ldl;
@@ -40,7 +38,7 @@ pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};
 pub use perram_wertheim::{
     contact_function, contact_function_fast, contact_functions, contact_functions_fast,
     fast_condition, CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL, FAST_MAX_CONDITION, FAST_ROUNDING,
-    FAST_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS,
+    FAST_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS, NEAR_END, SINGULAR_PIVOT,
 };
 pub use prepared::PreparedEllipsoid;
 pub use refine::REFINEMENT_TOL;

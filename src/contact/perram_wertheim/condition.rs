@@ -73,16 +73,22 @@ pub(crate) fn sizes<T: Arith>(
     let a1 = r[0] * r[0] * m[0] + r[1] * r[1] * m[1] + r[2] * r[2] * m[2];
     let b1 = d2[0] * c1[0] + d2[1] * c1[1] + d2[2] * c1[2];
     let b2 = d1[0] * c2[0] + d1[1] * c2[1] + d1[2] * c2[2];
-    [(end1, b[0]), (end2, b[3]), (a1, a[1]), (b1, b[1]), (b2, b[2])]
+    [
+        (end1, b[0]),
+        (end2, b[3]),
+        (a1, a[1]),
+        (b1, b[1]),
+        (b2, b[2]),
+    ]
 }
 
 /// Whether `κ ≤ FAST_MAX_CONDITION`, from [`sizes`]. False for a coefficient that is
 /// not positive or not finite.
 #[inline(always)]
 pub(crate) fn well_conditioned(sizes: &[(f64, f64); 5]) -> bool {
-    sizes
-        .iter()
-        .fold(true, |ok, &(bound, x)| ok & (bound <= FAST_MAX_CONDITION * x))
+    sizes.iter().fold(true, |ok, &(bound, x)| {
+        ok & (bound <= FAST_MAX_CONDITION * x)
+    })
 }
 
 /// The condition number `κ` (module docs) that decides whether

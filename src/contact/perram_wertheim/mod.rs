@@ -88,7 +88,9 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
     solve_otherwise(r12, q1, q2, accurate)
 }
 
-/// [`solve`] for input that needs validating in detail, rescaling, or is `r12 = 0`.
+/// [`solve`] for input that needs validating in detail, rescaling, or is `r12 = 0`;
+/// forms that are not definite enough to factor and sizes too far apart to rescale
+/// together go to [`robust::solve_robust`].
 #[cold]
 #[inline(never)]
 fn solve_otherwise(
@@ -97,7 +99,13 @@ fn solve_otherwise(
     q2: &Sym3,
     accurate: bool,
 ) -> Result<Contact, ContactError> {
-    let p = Prepared::new(r12, q1, q2)?;
+    let p = match Prepared::new(r12, q1, q2) {
+        Ok(p) => p,
+        Err(ContactError::NotPositiveDefinite { .. } | ContactError::Overflow { .. }) => {
+            return solve_robust(r12, q1, q2, 0);
+        }
+        Err(e) => return Err(e),
+    };
     if p.r == [0.0; 3] {
         return Ok(Contact {
             mu2: 0.0,
@@ -111,19 +119,22 @@ fn solve_otherwise(
 
 #[inline(always)]
 fn solve_prepared(p: &Prepared, accurate: bool) -> Result<Contact, ContactError> {
+    let (parts, (a, b), t0) = pieces(p);
+    if !(NEAR_END..=1.0 - NEAR_END).contains(&t0) {
+        return near_an_end(p);
+    }
     if !accurate {
-        let (parts, (a, b), t0) = pieces(p);
         if !well_conditioned(&sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b)) {
             return accurate_instead(p);
         }
         let rational = Rational::from_coefficients(a, b);
-        let (t, stop, iterations) = predict(&rational, t0, HALLEY_FINAL_GAIN, true)?;
+        let (t, stop, iterations) = predict_with(&rational, t0, HALLEY_FINAL_GAIN, true)?;
         return p.finish(rational.f(t), t, stop, iterations);
     }
-    let (parts, rational, t0) = start(p);
+    let rational = Rational::from_coefficients(a, b);
     // Built before the predictor runs, so that its work fills the predictor's latency.
     let refiner = Refiner::new(p, &parts, &rational);
-    let (t, stop, iterations) = predict(&rational, t0, CORRECTOR_SWITCH_GAIN, false)?;
+    let (t, stop, iterations) = predict(&rational, t0, CORRECTOR_SWITCH_GAIN)?;
     if stop != Stop::Converged {
         return p.finish(rational.f(t), t, stop, iterations);
     }
@@ -138,15 +149,16 @@ fn accurate_instead(p: &Prepared) -> Result<Contact, ContactError> {
     solve_prepared(p, true)
 }
 
-/// The pieces of the rational form of a prepared pair, and the maximiser for two
-/// spheres where the predictor starts.
-#[inline(always)]
-fn start(p: &Prepared) -> (PencilParts, Rational, f64) {
-    let (parts, (a, b), t0) = pieces(p);
-    (parts, Rational::from_coefficients(a, b), t0)
+/// Both methods' answer for a pair whose maximiser for two spheres lies within
+/// [`NEAR_END`] of 0 or 1.
+#[cold]
+#[inline(never)]
+fn near_an_end(p: &Prepared) -> Result<Contact, ContactError> {
+    solve_robust(&p.r, &p.q1, &p.q2, p.mu2_exp)
 }
 
-/// [`start`] with the coefficients of the rational form unscaled.
+/// The pieces of the rational form of a prepared pair (its coefficients unscaled), and
+/// the maximiser for two spheres where the predictor starts.
 #[inline(always)]
 #[allow(clippy::type_complexity)]
 fn pieces(p: &Prepared) -> (PencilParts, ([f64; 3], [f64; 4]), f64) {
@@ -159,11 +171,18 @@ fn pieces(p: &Prepared) -> (PencilParts, ([f64; 3], [f64; 4]), f64) {
 
 /// Halley's method on `φ′ = (ln f)′` from `t`, bracketed. Stops once the gain predicted
 /// at an evaluation is below [`GAIN_TOL`], or below `switch` where the Halley step is
-/// accepted (the step is taken, with no evaluation after it) and, if `remainder`, the
-/// gain that step leaves is estimated below [`GAIN_TOL`] too (see [`step_leaves_little`]).
-/// Returns the last iterate, why it stopped and the evaluations done.
+/// accepted (the step is taken, with no evaluation after it). Returns the last iterate,
+/// why it stopped and the evaluations done.
 #[inline(always)]
-fn predict(
+fn predict(rational: &Rational, t: f64, switch: f64) -> Result<(f64, Stop, u32), ContactError> {
+    predict_with(rational, t, switch, false)
+}
+
+/// [`predict`], where the Halley step from a gain below `switch` ends the iteration
+/// only if, when `remainder`, the gain it leaves is estimated below [`GAIN_TOL`] too
+/// (see [`step_leaves_little`]).
+#[inline(always)]
+fn predict_with(
     rational: &Rational,
     mut t: f64,
     switch: f64,
@@ -328,12 +347,19 @@ fn correct_further(
 
 mod batch;
 mod condition;
+mod exact;
+mod robust;
+#[cfg(test)]
+mod robust_tests;
 #[cfg(test)]
 mod timing;
 
 pub use batch::{contact_functions, contact_functions_fast};
-use condition::{sizes, well_conditioned};
 pub use condition::{fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL};
+use condition::{sizes, well_conditioned};
+pub use exact::SINGULAR_PIVOT;
+use robust::solve_robust;
+pub use robust::NEAR_END;
 
 #[cfg(test)]
 mod tests {

@@ -107,7 +107,7 @@ fn eight<const ACCURATE: bool>(
     let factored = (0..3).fold(Mask::splat(true), |m, i| {
         m.and(l1.d[i].gt(floor1)).and(l2.d[i].gt(floor2))
     });
-    // start(p), with Rational::new's scaling lane by lane.
+    // pieces(p), with Rational::new's scaling lane by lane.
     let (a, b) = (l1.quadratic_form(&r), l2.quadratic_form(&r));
     let parts = PencilParts::new(&q1, &q2);
     let (ca, cb) = coefficients(&r, &q1, &q2, &parts, [l1.det(), l2.det(), a, b]);
@@ -119,8 +119,22 @@ fn eight<const ACCURATE: bool>(
     } else {
         HALLEY_FINAL_GAIN
     };
-    let (t, iterations, predicted) = predict_lanes(&poly, t0, switch);
-    let common = plain.and(factored).and(predicted);
+    // `solve_prepared`'s hand-overs, to the scalar code: λ₀ near an end, and (fast)
+    // κ above FAST_MAX_CONDITION. Their lanes do not iterate.
+    let inside = t0
+        .ge(F::splat(NEAR_END))
+        .and(t0.le(F::splat(1.0 - NEAR_END)));
+    let conditioned = match ACCURATE {
+        true => Mask::splat(true),
+        false => sizes(&r, &q1, &q2, &parts, &ca, &cb)
+            .iter()
+            .fold(Mask::splat(true), |m, &(bound, x)| {
+                m.and(bound.le(FAST_MAX_CONDITION * x))
+            }),
+    };
+    let candidates = plain.and(factored).and(inside).and(conditioned);
+    let (t, iterations, predicted) = predict_lanes(&poly, t0, switch, candidates, !ACCURATE);
+    let common = candidates.and(predicted);
     let scalar = |k: usize| {
         let (r12, q1, q2) = &pairs[k];
         one::<ACCURATE>(r12, q1, q2)
@@ -175,18 +189,28 @@ fn scales<const N: usize>(c: &[F; N]) -> ([i32; LANES], F) {
     (scale.map(|s| s.0), F::from_array(scale.map(|s| s.1)))
 }
 
-/// [`predict`] in eight lanes: where each lane stops, its evaluations, and a mask clear
-/// for lanes that [`predict`] would take elsewhere (the term-by-term derivatives, an
-/// error, or the iteration cap).
+/// [`predict_with`] in eight lanes, for the lanes of `start` (the others do not
+/// iterate): where each lane stops, its evaluations, and a mask clear for lanes that
+/// [`predict_with`] would take elsewhere (the term-by-term derivatives, an error, or
+/// the iteration cap).
 #[inline(always)]
-fn predict_lanes(poly: &Poly<F>, t0: F, switch: f64) -> (F, [u32; LANES], Mask) {
+fn predict_lanes(
+    poly: &Poly<F>,
+    t0: F,
+    switch: f64,
+    start: Mask,
+    remainder: bool,
+) -> (F, [u32; LANES], Mask) {
     let zero = F::splat(0.0);
     let mut t = t0;
     let (mut lo, mut hi) = (zero, F::splat(1.0));
-    let mut running = Mask::splat(true);
+    let mut running = start;
     let mut usable = Mask::splat(true);
     let mut iterations = [0; LANES];
     for _ in 0..MAX_ITERATIONS {
+        if !running.any() {
+            break;
+        }
         let Halley { d1, d2, d3, p } = poly.halley_terms(t, 1.0 - t);
         // `halley` declines (P small or NaN), or the derivatives are not finite:
         // `predict` would take another way.
@@ -208,9 +232,14 @@ fn predict_lanes(poly: &Poly<F>, t0: F, switch: f64) -> (F, [u32; LANES], Mask) 
         let newton_ok = curvature.gt(zero).and(newton.ge(lo)).and(newton.le(hi));
         let next = halley_ok.select(halley, newton_ok.select(newton, 0.5 * (lo + hi)));
         let gain2 = d1 * d1;
-        let small_gain = gain2
-            .le((2.0 * GAIN_TOL) * curvature)
-            .or(halley_ok.and(gain2.le((2.0 * switch) * curvature)));
+        let mut final_step = halley_ok.and(gain2.le((2.0 * switch) * curvature));
+        if remainder {
+            // step_leaves_little, lane by lane.
+            let x = d1 * d3 / (d2 * d2);
+            let x2 = x * x;
+            final_step = final_step.and((x2 * x2 * gain2).le((32.0 * GAIN_TOL) * curvature));
+        }
+        let small_gain = gain2.le((2.0 * GAIN_TOL) * curvature).or(final_step);
         let converged = d1.eq(zero).or(curvature.gt(zero).and(small_gain));
         let stalled = next.eq(t).or((hi - lo).le(f64::EPSILON * hi));
         t = running.select(next, t);
@@ -218,9 +247,6 @@ fn predict_lanes(poly: &Poly<F>, t0: F, switch: f64) -> (F, [u32; LANES], Mask) 
             *n += u32::from(running.get(k));
         }
         running = running.and(converged.or(stalled).not());
-        if !running.any() {
-            break;
-        }
     }
     (t, iterations, usable.and(running.not()))
 }

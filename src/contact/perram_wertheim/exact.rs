@@ -1,0 +1,264 @@
+//! For [`super::robust`]: the seven Bernstein coefficients of `f` in double-double,
+//! and the rank of a quadratic form that may be singular.
+//!
+//! The coefficients (see [`crate::contact::bernstein`]) are polynomials of degree 3 in
+//! `Q` (and 2 in `r`). Every product of two doubles is taken exactly ([`two_prod`]) and
+//! every sum in double-double, so each coefficient errs by about `ε²` times the size
+//! of its terms before it is rounded to a double: `ε² cond(Q)` relative for the end
+//! coefficients, `ε² κ` for the mixed ones (`κ` as in [`super::condition`]), far
+//! below an ulp for every form the crate accepts. `f` is a sum of positive terms in
+//! them, so it is then as accurate as its coefficients.
+
+use crate::contact::dd::two_prod;
+use crate::contact::{Sym3, Vec3};
+
+/// Pivots of a form within `SINGULAR_PIVOT` times its largest diagonal entry of zero
+/// count as zero: `2^-46 ≈ 1.4e-14` (64 ε), above the rounding of the pivots of a
+/// singular form written in doubles (a few ε) and of the elimination (multipliers at
+/// most 1 with diagonal pivoting). Such a form is taken as exactly singular: it is
+/// thinner than its own rounding resolves, about `√SINGULAR_PIVOT ≈ 1.2e-7` of its size.
+/// A pivot below `−SINGULAR_PIVOT` times the largest diagonal entry makes the form
+/// indefinite.
+pub const SINGULAR_PIVOT: f64 = 1.0 / (1u64 << 46) as f64;
+
+/// A double-double `hi + lo`.
+#[derive(Debug, Clone, Copy)]
+struct Dd {
+    hi: f64,
+    lo: f64,
+}
+
+impl Dd {
+    const ZERO: Dd = Dd { hi: 0.0, lo: 0.0 };
+
+    /// `a · b`, exactly.
+    fn prod(a: f64, b: f64) -> Dd {
+        let (hi, lo) = two_prod(a, b);
+        Dd { hi, lo }
+    }
+
+    /// `hi + lo` renormalised (`|lo| ≤ ulp(hi)/2`).
+    fn norm(hi: f64, lo: f64) -> Dd {
+        let s = hi + lo;
+        Dd {
+            hi: s,
+            lo: lo - (s - hi),
+        }
+    }
+
+    fn add(self, o: Dd) -> Dd {
+        let s = self.hi + o.hi;
+        let bb = s - self.hi;
+        let e = (self.hi - (s - bb)) + (o.hi - bb);
+        Dd::norm(s, e + self.lo + o.lo)
+    }
+
+    fn sub(self, o: Dd) -> Dd {
+        self.add(Dd {
+            hi: -o.hi,
+            lo: -o.lo,
+        })
+    }
+
+    fn mul(self, o: Dd) -> Dd {
+        let (p, e) = two_prod(self.hi, o.hi);
+        Dd::norm(p, e + (self.hi * o.lo + self.lo * o.hi))
+    }
+
+    fn times(self, x: f64) -> Dd {
+        let (p, e) = two_prod(self.hi, x);
+        Dd::norm(p, e + self.lo * x)
+    }
+
+    fn value(self) -> f64 {
+        self.hi + self.lo
+    }
+}
+
+/// `a·b − c·d`.
+fn minor(a: f64, b: f64, c: f64, d: f64) -> Dd {
+    Dd::prod(a, b).sub(Dd::prod(c, d))
+}
+
+/// The adjugate of a symmetric matrix (as [`crate::contact::sym`]'s `adjugate`).
+fn adjugate(m: &Sym3) -> [Dd; 6] {
+    [
+        minor(m[3], m[5], m[4], m[4]),
+        minor(m[2], m[4], m[1], m[5]),
+        minor(m[1], m[4], m[2], m[3]),
+        minor(m[0], m[5], m[2], m[2]),
+        minor(m[1], m[2], m[0], m[4]),
+        minor(m[0], m[3], m[1], m[1]),
+    ]
+}
+
+/// The polarised adjugate: the coefficient of `λ` in `adj(a + λb)`.
+fn polarised_adjugate(a: &Sym3, b: &Sym3) -> [Dd; 6] {
+    let two = |x: Dd| x.times(2.0);
+    let p = Dd::prod;
+    [
+        p(a[3], b[5]).add(p(b[3], a[5])).sub(two(p(a[4], b[4]))),
+        p(a[2], b[4])
+            .add(p(b[2], a[4]))
+            .sub(p(a[1], b[5]))
+            .sub(p(b[1], a[5])),
+        p(a[1], b[4])
+            .add(p(b[1], a[4]))
+            .sub(p(a[2], b[3]))
+            .sub(p(b[2], a[3])),
+        p(a[0], b[5]).add(p(b[0], a[5])).sub(two(p(a[2], b[2]))),
+        p(a[1], b[2])
+            .add(p(b[1], a[2]))
+            .sub(p(a[0], b[4]))
+            .sub(p(b[0], a[4])),
+        p(a[0], b[3]).add(p(b[0], a[3])).sub(two(p(a[1], b[1]))),
+    ]
+}
+
+/// `⟨s, t⟩ = tr(s t)` of a symmetric matrix in double-double and one in doubles.
+fn frobenius(s: &[Dd; 6], t: &Sym3) -> Dd {
+    let diagonal = s[0].times(t[0]).add(s[3].times(t[3])).add(s[5].times(t[5]));
+    let off = s[1].times(t[1]).add(s[2].times(t[2])).add(s[4].times(t[4]));
+    diagonal.add(off.times(2.0))
+}
+
+/// `xᵀ s x`.
+fn quadratic_form(s: &[Dd; 6], x: &Vec3) -> Dd {
+    let w = [
+        Dd::prod(x[0], x[0]),
+        Dd::prod(x[0], x[1]),
+        Dd::prod(x[0], x[2]),
+        Dd::prod(x[1], x[1]),
+        Dd::prod(x[1], x[2]),
+        Dd::prod(x[2], x[2]),
+    ];
+    let diagonal = s[0].mul(w[0]).add(s[3].mul(w[3])).add(s[5].mul(w[5]));
+    let off = s[1].mul(w[1]).add(s[2].mul(w[2])).add(s[4].mul(w[4]));
+    diagonal.add(off.times(2.0))
+}
+
+/// `[A0, A1, A2]`, `[B0, B1, B2, B3]` of `f = λ(1−λ) a / b` (module docs), each
+/// rounded once from double-double.
+pub(super) fn coefficients(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4]) {
+    let (adj1, adj2) = (adjugate(q1), adjugate(q2));
+    let mixed = polarised_adjugate(q1, q2);
+    let det = |m: &Sym3, adj: &[Dd; 6]| (0..3).fold(Dd::ZERO, |acc, k| acc.add(adj[k].times(m[k])));
+    let a = [
+        quadratic_form(&adj1, r),
+        quadratic_form(&mixed, r),
+        quadratic_form(&adj2, r),
+    ];
+    let b = [
+        det(q1, &adj1),
+        frobenius(&adj1, q2),
+        frobenius(&adj2, q1),
+        det(q2, &adj2),
+    ];
+    (a.map(Dd::value), b.map(Dd::value))
+}
+
+/// The rank of a symmetric positive semi-definite `q` whose largest diagonal entry is
+/// in `[1, 2)` (or `q = 0`): the number of pivots of its LDLᵀ factorisation with
+/// diagonal pivoting above [`SINGULAR_PIVOT`]. `None` if `q` is indefinite: a pivot
+/// below `−SINGULAR_PIVOT`, or, once the remaining diagonal is negligible, an entry
+/// beside it that is not.
+pub(super) fn rank(q: &Sym3) -> Option<usize> {
+    let mut m = [[q[0], q[1], q[2]], [q[1], q[3], q[4]], [q[2], q[4], q[5]]];
+    let tol = SINGULAR_PIVOT * q[0].max(q[3]).max(q[5]).max(1.0);
+    // An entry beside the diagonal is at most the geometric mean of its diagonal
+    // neighbours in a semi-definite form; beyond that (and rounding) it is indefinite,
+    // and the elimination below stays within the size of the diagonal.
+    let bounded = |i: usize, j: usize| m[i][j] * m[i][j] <= m[i][i] * m[j][j] + tol;
+    if !(bounded(0, 1) && bounded(0, 2) && bounded(1, 2)) {
+        return None;
+    }
+    let (mut left, mut n) = ([0, 1, 2], 3);
+    for k in 0..3 {
+        let p = (0..n)
+            .map(|i| left[i])
+            .max_by(|&i, &j| m[i][i].total_cmp(&m[j][j]))
+            .expect("one index left per pivot");
+        let d = m[p][p];
+        if !(d >= -tol) {
+            return None;
+        }
+        let rest = &left[..n];
+        if d <= tol {
+            let negligible = rest
+                .iter()
+                .all(|&i| rest.iter().all(|&j| m[i][j].abs() <= tol));
+            return negligible.then_some(k);
+        }
+        let at = rest.iter().position(|&i| i == p).expect("p is left");
+        left.copy_within(at + 1..n, at);
+        n -= 1;
+        for &i in &left[..n] {
+            for &j in &left[..n] {
+                m[i][j] -= m[i][p] * m[p][j] / d;
+            }
+        }
+    }
+    Some(3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::sym::pencil_coefficients;
+
+    /// On a well-conditioned pair the double-double coefficients are those of the same
+    /// algebra in doubles (`pencil_coefficients`, whose homogeneous coefficients are
+    /// these) to a few ulps: cond < 10 here, so 8 ε covers the rounding of the doubles.
+    #[test]
+    fn coefficients_match_the_double_algebra_on_a_tame_pair() {
+        let r = [0.7, -0.7, 1.1];
+        let q1 = [4.0, 1.0, 0.5, 3.0, -0.2, 2.0];
+        let q2 = [1.0, -0.3, 0.1, 2.0, 0.4, 0.5];
+        let (a, b) = coefficients(&r, &q1, &q2);
+        let (a_ref, b_ref) = pencil_coefficients(&q1, &q2, &r);
+        for (x, y) in a.iter().zip(&a_ref).chain(b.iter().zip(&b_ref)) {
+            assert!((x - y).abs() <= 8.0 * f64::EPSILON * y.abs(), "{x} {y}");
+        }
+    }
+
+    /// A flat disc written exactly has `det = 0` exactly and a rank-one adjugate; a
+    /// needle `v vᵀ` with short mantissas has a zero adjugate, exactly.
+    #[test]
+    fn singular_forms_give_exact_zeros() {
+        let r = [0.3, 0.5, -0.25];
+        let disc = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0];
+        let ball = [1.0, 0.0, 0.0, 1.0, 0.0, 1.0];
+        let (a, b) = coefficients(&r, &disc, &ball);
+        assert_eq!(b[0], 0.0);
+        assert_eq!(a[0], r[2] * r[2]);
+        let v = [0.75, -0.5, 0.375];
+        let needle = [
+            v[0] * v[0],
+            v[0] * v[1],
+            v[0] * v[2],
+            v[1] * v[1],
+            v[1] * v[2],
+            v[2] * v[2],
+        ];
+        let (a, b) = coefficients(&r, &needle, &ball);
+        assert_eq!((a[0], b[0], b[1]), (0.0, 0.0, 0.0));
+        assert!(b[2] > 0.0 && a[1] > 0.0);
+    }
+
+    #[test]
+    fn rank_counts_the_pivots_above_rounding() {
+        assert_eq!(rank(&[1.0, 0.0, 0.0, 1.0, 0.0, 1.0]), Some(3));
+        assert_eq!(rank(&[1.0, 0.0, 0.0, 1.0, 0.0, 0.0]), Some(2));
+        assert_eq!(rank(&[1.0, 0.0, 0.0, 0.0, 0.0, 0.0]), Some(1));
+        assert_eq!(rank(&[0.0; 6]), Some(0));
+        // A needle along (1, 1, 0)/√2, rounded: rank one to rounding.
+        let h = 0.5;
+        assert_eq!(rank(&[h, h, 0.0, h, 0.0, 0.0]), Some(1));
+        // A thin but definite form: pivot 1e-12 ≫ SINGULAR_PIVOT.
+        assert_eq!(rank(&[1.0, 0.0, 0.0, 1.0, 0.0, 1e-12]), Some(3));
+        // Indefinite: a negative pivot, or a zero diagonal beside a non-zero entry.
+        assert_eq!(rank(&[1.0, 2.0, 0.0, 1.0, 0.0, 1.0]), None);
+        assert_eq!(rank(&[1.0, 0.0, 0.0, 0.0, 0.5, 0.0]), None);
+        assert_eq!(rank(&[1.0, 0.0, 0.0, 1.0, 0.0, -1e-3]), None);
+    }
+}

@@ -1,0 +1,334 @@
+//! The contact function of the pairs the common path does not take: semi-definite
+//! forms (flat discs, zero-radius needles, points), forms thinner than
+//! [`MIN_RELATIVE_PIVOT`](crate::contact::MIN_RELATIVE_PIVOT) resolves, sizes so far
+//! apart that λ* lies within [`NEAR_END`] of an end, or that the coefficients of `f`
+//! would leave the double range together.
+//!
+//! **Sizes.** Each form is scaled by a power of two to a largest diagonal entry in
+//! `[1, 2)`: `Q1 = σ1 Q̂1`, `Q2 = σ2 Q̂2`. With `Q(λ) = (sσ1 + tσ2) Q̂(λ̂)`,
+//! `t̂ = tσ2 / (sσ1 + tσ2)`, a monotone map of `[0, 1]` onto itself,
+//! `f(λ) = f̂(λ̂) / (ŝσ2 + t̂σ1)`, `f̂` the contact function of `(r, Q̂1, Q̂2)`. So
+//! `μ² = max F / σm`, `σm = max(σ1, σ2)`, with
+//! `F = ŝt̂ a(λ̂) / (b(λ̂) (w1 ŝ + w2 t̂))`, `w1 = σ2/σm`, `w2 = σ1/σm`: one weight is 1,
+//! the other a power of two that may be tiny (0 when it underflows: the exact limit),
+//! and the coefficients of `a` and `b` are those of two forms of size 1.
+//!
+//! **Degenerate forms.** A form of rank 2 has `det = 0`, of rank 1 also a zero
+//! adjugate, of rank 0 (`Q = 0`) nothing at all: [`exact::rank`](super::exact::rank)
+//! decides the rank and the coefficients that vanish with it are set to exactly 0.
+//! `F = N/C` is then a ratio of two homogeneous quartics in `(ŝ, t̂)` with
+//! non-negative coefficients, `N = ŝt̂a`, `C = b (w1 ŝ + w2 t̂)`, which may vanish at an
+//! end to the same order: `F` has a finite limit there, and its maximum may be that
+//! limit (a point against a ball: `μ² = rᵀQ2⁻¹r` at `λ = 0`), answered in closed form
+//! ([`Stop::Exact`]). If both forms are singular along a common direction, `Q(λ)` is
+//! singular for every λ and μ² is not defined:
+//! [`ContactError::CommonNullDirection`].
+//!
+//! **The maximum.** With `x = t̂` and `E_p(x) = Σ k p_k B_k / Σ p_k B_k` the mean index
+//! of `p` in the basis `B_k = (1−x)^{4−k} x^k`, `x(1−x) φ′ = E_N − E_C =: ψ` for
+//! `φ = ln F`, and `dE_p/dx = Var_p / (x(1−x))` (`Var_p` the variance of the index):
+//! both are ratios of sums of non-negative terms, bounded whatever the sizes. The root
+//! of ψ is taken in `(0, ½]` (the pair mirrored if it lies above ½, so that `x` keeps
+//! its relative precision however close λ* is to an end) by Newton's method, with a
+//! bisection of `log x` whenever Newton leaves the bracket or fails to halve it, and
+//! the same test of the gain as the predictor's ([`GAIN_TOL`]). `F` is then a sum of
+//! positive terms in coefficients accurate to about `ε²` (module
+//! [`exact`](super::exact)), so μ² is accurate to a few ulps.
+
+use super::exact::{coefficients, rank};
+use super::{GAIN_TOL, MAX_ITERATIONS};
+use crate::contact::ldl::Ldl;
+use crate::contact::scale::{exponent, finish, ldexp};
+use crate::contact::{Contact, ContactError, Stop, Sym3, Vec3};
+
+/// The common path hands a pair over when the maximiser for two spheres,
+/// `λ₀ = √b / (√a + √b)`, lies within `NEAR_END = 2^-24 ≈ 6e-8` of 0 or 1: sizes in a
+/// ratio above about 1e7. λ* is then near an end too (`1 − λ₀ ≤ √ν`, `ν` the largest
+/// eigenvalue of `Q1⁻¹Q2`), which the common path resolves only in `1 − λ` with an
+/// absolute precision of ε.
+pub const NEAR_END: f64 = 1.0 / (1u64 << 24) as f64;
+
+/// Smallest `x` the bisection of `log x` considers: below it `F` differs from its limit
+/// at 0 by far less than an ulp.
+const SMALLEST_X: f64 = f64::MIN_POSITIVE;
+
+/// [`contact_function`](super::contact_function) of `(r, q1, q2)` (finite; `q1`, `q2`
+/// not known to be definite) by the module's method; `mu2_exp` as in
+/// [`Prepared`](crate::contact::scale::Prepared).
+pub(super) fn solve_robust(
+    r: &Vec3,
+    q1: &Sym3,
+    q2: &Sym3,
+    mu2_exp: i32,
+) -> Result<Contact, ContactError> {
+    let (e1, q1) = normalised(q1, "q1")?;
+    let (e2, q2) = normalised(q2, "q2")?;
+    let k1 = rank(&q1).ok_or_else(|| indefinite(&q1, "q1"))?;
+    let k2 = rank(&q2).ok_or_else(|| indefinite(&q2, "q2"))?;
+    let rmax = r[0].abs().max(r[1].abs()).max(r[2].abs());
+    if rmax == 0.0 {
+        return finish(0, 0.0, 0.5, Stop::Exact, 0);
+    }
+    if k1 < 3 && k2 < 3 {
+        let sum: Sym3 = std::array::from_fn(|k| q1[k] + q2[k]);
+        if rank(&sum) != Some(3) {
+            return Err(ContactError::CommonNullDirection);
+        }
+    }
+    let j = exponent(rmax);
+    let r = r.map(|x| ldexp(x, -j));
+    // A zero form has no size of its own: it takes the other's.
+    let (e1, e2) = (e1.or(e2).unwrap_or(0), e2.or(e1).unwrap_or(0));
+    let (a, b) = vanishing(coefficients(&r, &q1, &q2), k1, k2);
+    let em = e1.max(e2);
+    let (w1, w2) = (ldexp(1.0, e2 - em), ldexp(1.0, e1 - em));
+    let n = [0.0, a[0], a[1], a[2], 0.0];
+    let c = [
+        w1 * b[0],
+        w1 * b[1] + w2 * b[0],
+        w1 * b[2] + w2 * b[1],
+        w1 * b[3] + w2 * b[2],
+        w2 * b[3],
+    ];
+    // Where the maximiser for two spheres, λ₀ = √b / (√a + √b) with a = A0/B0 and
+    // b = A2/B3 in the original sizes, maps to: t̂/ŝ = √(A2 B0 w1 / (A0 B3 w2)).
+    let odds = (a[2] / a[0]).sqrt() * (b[0] / b[3]).sqrt() * (w1.sqrt() / w2.sqrt());
+    let m = maximise(&n, &c, odds)?;
+    // Back from λ̂ to λ: λ = t̂ w2 / (ŝ w1 + t̂ w2).
+    let (s, t) = (m.s * w1, m.t * w2);
+    let lambda = if s + t > 0.0 { t / (s + t) } else { 0.5 };
+    finish(mu2_exp + 2 * j - em, m.value, lambda, m.stop, m.iterations)
+}
+
+/// `(log2 σ, Q/σ)` with `σ` the power of two that brings the largest diagonal entry
+/// into `[1, 2)`; `None` for `Q = 0`. An error if a diagonal entry is negative, or all
+/// are zero and another entry is not.
+fn normalised(q: &Sym3, what: &'static str) -> Result<(Option<i32>, Sym3), ContactError> {
+    let largest = q[0].max(q[3]).max(q[5]);
+    if q[0] < 0.0 || q[3] < 0.0 || q[5] < 0.0 || (largest == 0.0 && q.iter().any(|&x| x != 0.0)) {
+        return Err(indefinite(q, what));
+    }
+    if largest == 0.0 {
+        return Ok((None, [0.0; 6]));
+    }
+    let e = exponent(largest);
+    Ok((Some(e), q.map(|x| ldexp(x, -e))))
+}
+
+/// The error for an indefinite form, with the first pivot of its LDLᵀ factorisation
+/// (in the given order) that is not positive enough.
+fn indefinite(q: &Sym3, what: &'static str) -> ContactError {
+    let (pivot, value) = match Ldl::factor(q) {
+        Err(bad) => bad,
+        Ok(l) => (2, l.d[2]),
+    };
+    ContactError::NotPositiveDefinite { what, pivot, value }
+}
+
+/// The coefficients with those that vanish for forms of ranks `k1`, `k2` set to 0,
+/// and rounding below 0 (a singular direction written in doubles) clamped to 0.
+fn vanishing((a, b): ([f64; 3], [f64; 4]), k1: usize, k2: usize) -> ([f64; 3], [f64; 4]) {
+    let (mut a, mut b) = (a.map(|x| x.max(0.0)), b.map(|x| x.max(0.0)));
+    // Rank < 3: det = 0; rank < 2: adj = 0 too; rank 0: Q = 0.
+    for (k, det, adj_b, adj_a, zero_b) in [(k1, 0, 1, 0, 2), (k2, 3, 2, 2, 1)] {
+        if k < 3 {
+            b[det] = 0.0;
+        }
+        if k < 2 {
+            b[adj_b] = 0.0;
+            a[adj_a] = 0.0;
+        }
+        if k < 1 {
+            b[zero_b] = 0.0;
+            a[1] = 0.0;
+        }
+    }
+    (a, b)
+}
+
+/// Where `F = N/C` is largest on `[0, 1]`, and its value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Maximum {
+    value: f64,
+    /// `1 − λ̂` and `λ̂`, each with its own relative precision.
+    s: f64,
+    t: f64,
+    stop: Stop,
+    iterations: u32,
+}
+
+/// The maximum of `F = N/C` (module docs) on `[0, 1]`, or an overflow error if `F` is
+/// unbounded at an end (`N` vanishes there to a lower order than `C`). `odds`, an
+/// estimate of `λ̂/(1−λ̂)` at the maximum, is where the search starts if it is usable.
+fn maximise(n: &[f64; 5], c: &[f64; 5], odds: f64) -> Result<Maximum, ContactError> {
+    let first = |p: &[f64; 5]| p.iter().position(|&x| x > 0.0);
+    let last = |p: &[f64; 5]| p.iter().rposition(|&x| x > 0.0);
+    let (Some(n_lo), Some(n_hi)) = (first(n), last(n)) else {
+        // a ≡ 0 (r in no direction the forms reach... only r = 0): F ≡ 0.
+        return Ok(end(0.0, false));
+    };
+    let infinite = ContactError::Overflow { what: "μ²" };
+    let (c_lo, c_hi) = (
+        first(c).ok_or(infinite.clone())?,
+        last(c).ok_or(infinite.clone())?,
+    );
+    if n_lo < c_lo || n_hi > c_hi {
+        return Err(infinite);
+    }
+    let (nr, cr) = (reversed(n), reversed(c));
+    if n_lo == c_lo && !rises(&n[n_lo..], &c[c_lo..]) {
+        return Ok(end(n[n_lo] / c[c_lo], false));
+    }
+    if n_hi == c_hi && !rises(&nr[4 - n_hi..], &cr[4 - c_hi..]) {
+        return Ok(end(n[n_hi] / c[c_hi], true));
+    }
+    // The root lies above ½ if ψ(½) > 0: mirrored, it lies in (0, ½].
+    let mirrored = psi(n, c, 0.5).0 > 0.0;
+    let (n, c) = if mirrored { (&nr, &cr) } else { (n, c) };
+    let start = match mirrored {
+        false => odds / (1.0 + odds),
+        true => 1.0 / (1.0 + odds),
+    };
+    let (value, x, stop, iterations) = root(n, c, start);
+    let (s, t) = if mirrored { (x, 1.0 - x) } else { (1.0 - x, x) };
+    Ok(Maximum {
+        value,
+        s,
+        t,
+        stop,
+        iterations,
+    })
+}
+
+/// The maximum at λ̂ = 0 (or 1 if `at_one`), in closed form.
+fn end(value: f64, at_one: bool) -> Maximum {
+    let (s, t) = if at_one { (0.0, 1.0) } else { (1.0, 0.0) };
+    Maximum {
+        value,
+        s,
+        t,
+        stop: Stop::Exact,
+        iterations: 0,
+    }
+}
+
+fn reversed(p: &[f64; 5]) -> [f64; 5] {
+    [p[4], p[3], p[2], p[1], p[0]]
+}
+
+/// Whether `N/C` rises from `x = 0` when both start at the same index (`n[0], c[0] >
+/// 0`): `ψ(x) = k (n_k/n_0 − c_k/c_0) (x/(1−x))^k + …` for the first `k` where the
+/// normalised coefficients differ.
+fn rises(n: &[f64], c: &[f64]) -> bool {
+    let pad = |p: &[f64], k: usize| p.get(k).copied().unwrap_or(0.0);
+    (1..n.len().max(c.len()))
+        .map(|k| pad(n, k) * c[0] - pad(c, k) * n[0])
+        .find(|&d| d != 0.0)
+        .is_some_and(|d| d > 0.0)
+}
+
+/// The terms `p_k y^{k−l}` (`l` the first index with `p_l > 0`) at `y = x/(1−x)`,
+/// their sum, and the variance `Var_p` of the index they weigh: the sums of the module
+/// docs divided by `(1−x)^4 y^l`, so that they neither overflow nor underflow to 0 for
+/// `x ≤ ½`.
+fn moments(p: &[f64; 5], y: f64) -> ([f64; 5], f64, f64) {
+    let l = p.iter().position(|&x| x > 0.0).unwrap_or(4);
+    let mut w = [0.0; 5];
+    let mut power = 1.0;
+    for k in l..5 {
+        w[k] = p[k] * power;
+        power *= y;
+    }
+    let sum: f64 = w.iter().sum();
+    let mean = (0..5).map(|k| k as f64 * w[k]).sum::<f64>() / sum;
+    let var = (0..5)
+        .map(|k| (k as f64 - mean).powi(2) * w[k])
+        .sum::<f64>()
+        / sum;
+    (w, sum, var)
+}
+
+/// `ψ = E_N − E_C` and `x(1−x) ψ′ = Var_N − Var_C` at `x ≤ ½`. ψ is summed as
+/// `Σ (i − j) wN_i wC_j / (ΣwN ΣwC)`, whose terms are as large as the cancellation
+/// at the root makes necessary (each `E` is an index plus a part that may be far below
+/// an ulp of it).
+fn psi(n: &[f64; 5], c: &[f64; 5], x: f64) -> (f64, f64) {
+    let y = x / (1.0 - x);
+    let (wn, sn, vn) = moments(n, y);
+    let (wc, sc, vc) = moments(c, y);
+    let mut cross = 0.0;
+    for (i, a) in wn.iter().enumerate() {
+        for (j, b) in wc.iter().enumerate() {
+            cross += (i as f64 - j as f64) * (a * b);
+        }
+    }
+    (cross / sn / sc, vn - vc)
+}
+
+/// `F = N/C` at `x ≤ ½`.
+fn ratio(n: &[f64; 5], c: &[f64; 5], x: f64) -> f64 {
+    let y = x / (1.0 - x);
+    let first = |p: &[f64; 5]| p.iter().position(|&v| v > 0.0).unwrap_or(4) as i32;
+    let (sn, sc) = (moments(n, y).1, moments(c, y).1);
+    y.powi(first(n) - first(c)) * sn / sc
+}
+
+/// The root of ψ in `(0, ½]` (ψ > 0 below it) and `F` there, from `start` if it lies
+/// in that interval (from ¼ if not): Newton's method on
+/// `φ′ = ψ / (x(1−x))`, kept in the bracket, with a bisection of `log x` when the
+/// Newton point leaves it or the bracket has not halved (in `log x`) over two steps.
+/// Stops once the gain `φ′² / (2|φ″|)` is at most [`GAIN_TOL`] (after taking that last
+/// step) or the bracket is a few ulps wide.
+fn root(n: &[f64; 5], c: &[f64; 5], start: f64) -> (f64, f64, Stop, u32) {
+    let (mut lo, mut hi) = (0.0f64, 0.5f64);
+    let log_width = |lo: f64, hi: f64| hi.log2() - lo.max(SMALLEST_X).log2();
+    let mut x = if start > SMALLEST_X && start < 0.5 {
+        start
+    } else {
+        0.25
+    };
+    let (mut halved_at, mut since) = (log_width(lo, hi), 0);
+    for iterations in 1..=MAX_ITERATIONS {
+        let (p, v) = psi(n, c, x);
+        if p > 0.0 {
+            lo = x;
+        } else if p < 0.0 {
+            hi = x;
+        }
+        let s = 1.0 - x;
+        // φ″ = (V − ψ(s − x)) / (xs)², so the gain is ψ² / (2 den) and the Newton step
+        // ψ xs / den, with den = ψ(s − x) − V > 0 where φ is concave.
+        let den = p * (s - x) - v;
+        let newton = if den > 0.0 {
+            x + p * x * s / den
+        } else {
+            f64::NAN
+        };
+        if p == 0.0 || (den > 0.0 && p * p <= 2.0 * GAIN_TOL * den) {
+            // The last step, unless it leaves the bracket (where F is flat to far below
+            // an ulp and the step is all rounding).
+            let last = if newton > lo && newton < hi {
+                newton
+            } else {
+                x
+            };
+            return (ratio(n, c, last), last, Stop::Converged, iterations);
+        }
+        if hi - lo <= 4.0 * f64::EPSILON * hi {
+            return (ratio(n, c, x), x, Stop::Converged, iterations);
+        }
+        let width = log_width(lo, hi);
+        if width <= 0.5 * halved_at {
+            (halved_at, since) = (width, 0);
+        } else {
+            since += 1;
+        }
+        x = if newton > lo && newton < hi && since < 2 {
+            newton
+        } else {
+            (halved_at, since) = (width, 0);
+            (0.5 * (lo.max(SMALLEST_X).log2() + hi.log2())).exp2()
+        };
+    }
+    (ratio(n, c, x), x, Stop::MaxIterations, MAX_ITERATIONS)
+}
