@@ -16,7 +16,9 @@ on g(λ) = -f'(λ), and written with 30 significant digits.  A sample of rows is
 re-solved at CHECK_DPS digits by an independent method (the root of the degree-6
 numerator of f'(λ), built from the polynomial adjugate and determinant of Q(λ)) and
 must agree to at least 30 digits in μ² and in λ* (relative to min(λ*, 1 - λ*));
---check-all re-solves every row.
+--check-all re-solves every row.  The degenerate rows are checked by a golden-section
+search of f itself (tools/contact_exact.py): 30 digits in μ², MIN_GOLDEN_LAMBDA_DIGITS
+in λ* where it is not an end.
 
 Output (header r0,r1,r2,q1_0..q1_5,q2_0..q2_5,mu2,lambda):
 
@@ -24,7 +26,8 @@ tests/data/contact_typical.csv   N_TYPICAL rows.  Triaxial ellipsoids with semi-
     log-uniform in [0.1, 10], uniformly random rotations, random direction of r,
     and |r| scaled so that μ² is log-uniform in [1e-2, 1e2].
 
-tests/data/contact_extreme.csv   N_PER_CATEGORY rows per category (7 categories),
+tests/data/contact_extreme.csv   N_PER_CATEGORY rows per category (8 categories; the last
+    has len(NEAR_ASPECTS) × len(NEAR_PERTURBATIONS) × ROWS_PER_NEAR = 240 rows),
     with an extra final column `category`:
     aspect_ratio     needles (a, a/A, a/A), platelets (a, a, a/A) and triaxial
                      (a, a/A^t, a/A) ellipsoids, A log-uniform in [10, 1e4] (a quarter
@@ -41,6 +44,27 @@ tests/data/contact_extreme.csv   N_PER_CATEGORY rows per category (7 categories)
     tiny_scale       typical pairs with all lengths scaled by 1e-6 (Q by 1e-12).
     huge_scale       typical pairs with all lengths scaled by 1e6 (Q by 1e12).
     near_coincident  typical pairs with |r| tiny: μ² log-uniform in [1e-24, 1e-4].
+    nearly_identical Q2 a tiny change of Q1 with nearly parallel axes, for every aspect
+                     ratio A in NEAR_ASPECTS (needles, platelets, triaxial, as in
+                     aspect_ratio; A = 1 is a ball) and perturbation δ in
+                     NEAR_PERTURBATIONS (1e-16 to 1e-2), ROWS_PER_NEAR rows each: the
+                     semi-axes multiplied by 1 + δξ (ξ uniform in [-1, 1]), or the
+                     orientation turned by an angle δ about a random axis, alternately;
+                     μ² in [1e-2, 1e2].  The coefficients of f cancel here.
+
+tests/data/contact_degenerate.csv   N_PER_CATEGORY rows per category, with `category`,
+    solved by tools/contact_exact.py (exact rational coefficients; see its docstring):
+    semi_definite    a singular form against a definite one (typical or elongated), in
+                     either order: a flat disc (rank 2), a zero-radius needle (rank 1)
+                     or a point (Q = 0); and, one row in five, a disc against a disc or
+                     a needle crossing it (both singular, in no common direction).  The
+                     singular forms are B Bᵀ with B (3 × rank) a rotation's columns times
+                     semi-axes in [0.1, 10], rounded to 20 bits: every product and sum is
+                     then exact in doubles, so they are exactly singular.  μ² in
+                     [1e-2, 1e2]; λ* may be 0 or 1 (the limit at the singular end).
+    huge_ratio       a typical ellipsoid and one scaled up by ρ, log-uniform in
+                     HUGE_RATIO_RANGE (up to 1e150, Q ratio 1e300), alternately first and
+                     second; μ² in [1e-2, 1e2].
 
 The script also checks the worked example of the pw85 manual.  It is deterministic:
 random numbers come only from random.Random(SEED).random(), whose sequence Python
@@ -61,6 +85,8 @@ from pathlib import Path
 import mpmath
 from mpmath import mp, mpf
 
+from contact_exact import contact_exact, contact_golden, agreeing
+
 SEED = 20240611
 DPS = 60
 CHECK_DPS = 120
@@ -70,6 +96,12 @@ N_CHECK_PER_GROUP = 8
 MIN_AGREEING_DIGITS = 30
 MAX_ITERATIONS = 400
 SIZE_RATIO_RANGE = (1e3, 1e6)
+NEAR_ASPECTS = [1.0, 3.0, 10.0, 100.0, 1e3, 1e4]
+NEAR_PERTURBATIONS = [1e-16, 1e-14, 1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2]
+ROWS_PER_NEAR = 5
+HUGE_RATIO_RANGE = (1e6, 1e150)
+SINGULAR_BITS = 20
+MIN_GOLDEN_LAMBDA_DIGITS = 15
 OUT_DIR = Path(__file__).resolve().parent.parent / "tests" / "data"
 
 HEADER = (
@@ -137,14 +169,16 @@ def random_form(rng, semi_axes):
     return quadratic_form(semi_axes, random_quaternion(rng))
 
 
-def scaled_separation(rng, q1, q2, mu2_target):
+def scaled_separation(rng, q1, q2, mu2_target, solve=None):
     """A random r, rounded to doubles, with μ²(exact r before rounding) = mu2_target.
 
-    μ² is computed for a unit r in high precision; μ² ∝ |r|², so r is scaled by
-    sqrt(mu2_target / μ²(unit r)) and each component rounded to the nearest double.
+    μ² is computed for a unit r in high precision (by `solve`, default `contact`); μ² ∝
+    |r|², so r is scaled by sqrt(mu2_target / μ²(unit r)) and each component rounded to
+    the nearest double.
     """
     direction = random_direction(rng)
-    scale = mp.sqrt(mpf(mu2_target) / contact(direction, q1, q2).mu2)
+    unit_mu2 = contact(direction, q1, q2).mu2 if solve is None else solve(direction, q1, q2).mu2
+    scale = mp.sqrt(mpf(mu2_target) / unit_mu2)
     return tuple(float(scale * d) for d in direction)
 
 
@@ -386,6 +420,46 @@ def identical_rows(rng, n):
     return rows
 
 
+def shaped_semi_axes(rng, aspect):
+    """A needle, platelet or triaxial ellipsoid of the given aspect ratio (as
+    elongated_semi_axes), size log-uniform in [0.1, 10]."""
+    kind = int(3 * rng.random())
+    size = log_uniform(rng, 0.1, 10.0)
+    if kind == 0:
+        return [size, size / aspect, size / aspect]
+    if kind == 1:
+        return [size, size, size / aspect]
+    return [size, size / float(mpf(aspect) ** rng.random()), size / aspect]
+
+
+def turned(quat, axis, angle):
+    """The unit quaternion quat ⊗ (cos(angle/2), sin(angle/2) axis), in doubles."""
+    w1, x1, y1, z1 = (mpf(v) for v in quat)
+    half = mpf(angle) / 2
+    w2, (x2, y2, z2) = mp.cos(half), (mp.sin(half) * a for a in axis)
+    return tuple(float(v) for v in (
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+    ))
+
+
+def nearly_identical_rows(rng, _n):
+    rows = []
+    for aspect in NEAR_ASPECTS:
+        for delta in NEAR_PERTURBATIONS:
+            for i in range(ROWS_PER_NEAR):
+                axes, quat = shaped_semi_axes(rng, aspect), random_quaternion(rng)
+                q1 = quadratic_form(axes, quat)
+                if i % 2 == 0:
+                    q2 = quadratic_form([a * (1 + delta * (2 * rng.random() - 1)) for a in axes], quat)
+                else:
+                    q2 = quadratic_form(axes, turned(quat, random_direction(rng), delta))
+                rows.append((q1, q2, log_uniform(rng, 1e-2, 1e2)))
+    return rows
+
+
 CATEGORIES = {
     "aspect_ratio": aspect_ratio_rows,
     "size_ratio": size_ratio_rows,
@@ -394,6 +468,57 @@ CATEGORIES = {
     "tiny_scale": lambda rng, n: typical_rows(rng, n, length_scale=1e-6),
     "huge_scale": lambda rng, n: typical_rows(rng, n, length_scale=1e6),
     "near_coincident": lambda rng, n: typical_rows(rng, n, mu2_range=(1e-24, 1e-4)),
+    "nearly_identical": nearly_identical_rows,
+}
+
+
+def exactly_singular_form(rng, semi_axes, rank):
+    """B Bᵀ with B the first `rank` columns of a random rotation times the semi-axes,
+    rounded to SINGULAR_BITS bits at a common scale: integers times 2^(2e), sums of at
+    most three products below 2^(2 SINGULAR_BITS + 2), so exact in doubles and exactly
+    of rank `rank` (0: Q = 0)."""
+    rot = rotation_matrix(random_quaternion(rng))
+    cols = [[rot[i][k] * semi_axes[k] for i in range(3)] for k in range(rank)]
+    if rank == 0:
+        return (0.0,) * 6
+    largest = max(abs(x) for col in cols for x in col)
+    unit = 2.0 ** (math.frexp(largest)[1] - SINGULAR_BITS)
+    cols = [[round(x / unit) * unit for x in col] for col in cols]
+    return tuple(
+        sum(col[i] * col[j] for col in cols)
+        for i, j in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+    )
+
+
+def semi_definite_rows(rng, n):
+    rows = []
+    for i in range(n):
+        kind = i % 5
+        singular = exactly_singular_form(rng, typical_semi_axes(rng), [2, 1, 0, 2, 1][kind])
+        if kind < 3:
+            axes = typical_semi_axes(rng) if (i // 5) % 2 == 0 else elongated_semi_axes(rng)
+            other = random_form(rng, axes)
+        else:
+            other = exactly_singular_form(rng, typical_semi_axes(rng), 2)
+        q1, q2 = (singular, other) if (i // 10) % 2 == 0 else (other, singular)
+        rows.append((q1, q2, log_uniform(rng, 1e-2, 1e2)))
+    return rows
+
+
+def huge_ratio_rows(rng, n):
+    rows = []
+    for i in range(n):
+        ratio = log_uniform(rng, *HUGE_RATIO_RANGE)
+        small = random_form(rng, typical_semi_axes(rng))
+        big = random_form(rng, [ratio * a for a in typical_semi_axes(rng)])
+        q1, q2 = (big, small) if i % 2 == 0 else (small, big)
+        rows.append((q1, q2, log_uniform(rng, 1e-2, 1e2)))
+    return rows
+
+
+DEGENERATE = {
+    "semi_definite": semi_definite_rows,
+    "huge_ratio": huge_ratio_rows,
 }
 
 
@@ -407,6 +532,18 @@ def reference_row(rng, q1, q2, mu2_target):
     assert_positive_definite(q2)
     r = scaled_separation(rng, q1, q2, mu2_target)
     return r, q1, q2, contact(r, q1, q2)
+
+
+def exact_contact(r, q1, q2):
+    """tools/contact_exact.py's primary method, as a Contact."""
+    return Contact(*contact_exact(r, q1, q2))
+
+
+def degenerate_row(rng, q1, q2, mu2_target):
+    """reference_row for the degenerate categories: forms that may be singular (the
+    generators make them exactly so), solved by contact_exact."""
+    r = scaled_separation(rng, q1, q2, mu2_target, exact_contact)
+    return r, q1, q2, exact_contact(r, q1, q2)
 
 
 def format_row(r, q1, q2, result, category=None):
@@ -472,6 +609,26 @@ def cross_check(rows):
           f"lambda to >= {worst_lam:.1f} digits relative to min(lambda, 1 - lambda)")
 
 
+def golden_check(rows):
+    """Re-solve degenerate rows by contact_golden; μ² must agree to MIN_AGREEING_DIGITS,
+    λ* (relative to its distance to the nearer end) to MIN_GOLDEN_LAMBDA_DIGITS unless
+    it is an end."""
+    worst_mu2, worst_lam = math.inf, math.inf
+    for r, q1, q2, result in rows:
+        mu2, lam = contact_golden(r, q1, q2)
+        mu2_digits = agreeing(result.mu2, mu2)
+        assert mu2_digits >= MIN_AGREEING_DIGITS, f"golden check: mu2 {result.mu2} vs {mu2}"
+        worst_mu2 = min(worst_mu2, mu2_digits)
+        if 0 < result.lam < 1:
+            with mp.workdps(CHECK_DPS):
+                edge = min(result.lam, 1 - result.lam)
+                lam_digits = agreeing(result.lam / edge, lam / edge)
+            assert lam_digits >= MIN_GOLDEN_LAMBDA_DIGITS, f"golden check: lambda {result.lam} vs {lam}"
+            worst_lam = min(worst_lam, lam_digits)
+    print(f"golden-section check of {len(rows)} degenerate rows: mu2 agrees to >= {worst_mu2:.1f} digits, "
+          f"lambda to >= {worst_lam:.1f} digits where it is not an end")
+
+
 def spread_sample(rows):
     """N_CHECK_PER_GROUP rows evenly spread over rows."""
     return rows[:: len(rows) // N_CHECK_PER_GROUP][:N_CHECK_PER_GROUP]
@@ -508,19 +665,26 @@ def main():
     extreme = {name: [reference_row(rng, *spec) for spec in make(rng, N_PER_CATEGORY)]
                for name, make in CATEGORIES.items()}
 
+    degenerate = {name: [degenerate_row(rng, *spec) for spec in make(rng, N_PER_CATEGORY)]
+                  for name, make in DEGENERATE.items()}
+
     exact_identical = [row for row in extreme["identical"] if row[1] == row[2]]
     assert all(abs(row[3].lam - mpf(1) / 2) < mpf(10) ** (10 - DPS) for row in exact_identical)
 
     write_csv(args.out / "contact_typical.csv", HEADER, [format_row(*row) for row in typical])
     write_csv(args.out / "contact_extreme.csv", HEADER + ["category"],
               [format_row(*row, name) for name, rows in extreme.items() for row in rows])
+    write_csv(args.out / "contact_degenerate.csv", HEADER + ["category"],
+              [format_row(*row, name) for name, rows in degenerate.items() for row in rows])
 
     groups = [typical] + list(extreme.values())
     cross_check([row for rows in groups for row in (rows if args.check_all else spread_sample(rows))])
+    golden_check([row for rows in degenerate.values()
+                  for row in (rows if args.check_all else spread_sample(rows))])
 
     print("rows written:")
     summarise("typical", typical)
-    for name, rows in extreme.items():
+    for name, rows in [*extreme.items(), *degenerate.items()]:
         summarise(name, rows)
     print(f"done in {time.perf_counter() - start:.1f} s")
     return 0
