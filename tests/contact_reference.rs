@@ -136,9 +136,7 @@ fn fast_methods_meet_their_stated_bound_on_every_row() {
             let err = ((fast.mu2 - row.mu2) / row.mu2).abs();
             assert!(err <= FAST_TOL, "{name} line {}: {err:e}", c.line);
             let bound = match fast_condition(&c.r12, &c.q1, &c.q2) {
-                Ok(k) if k <= FAST_MAX_CONDITION => {
-                    FAST_ROUNDING * f64::EPSILON * k + GAIN_TOL
-                }
+                Ok(k) if k <= FAST_MAX_CONDITION => FAST_ROUNDING * f64::EPSILON * k + GAIN_TOL,
                 _ => ACCURATE_TOL,
             };
             assert!(

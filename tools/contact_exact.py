@@ -14,7 +14,10 @@ log u, then found by Newton's method with bisection at PRIMARY_DPS digits.
 
 Check (contact_golden): f(λ) = λ(1-λ) rᵀ adj(Q) r / det Q evaluated directly at
 CHECK_DPS digits, maximised by golden-section search in log u on each half (u = λ and
-u = 1 - λ down to SMALLEST_U), the larger of the two kept.  It shares no code with the
+u = 1 - λ down to SMALLEST_U), the larger of the two kept.  det Q(u) cancels to
+u^(3 - rank) of its terms at a singular end, 320 digits at u = SMALLEST_U = 1e-160 for
+a needle, which leaves 80; the size ratios (up to 1e150) put λ* within about 1e-150 of
+an end, above SMALLEST_U.  It shares no code with the
 primary method beyond the adjugate formula.
 """
 
@@ -25,7 +28,7 @@ from mpmath import mp, mpf
 
 PRIMARY_DPS = 80
 CHECK_DPS = 400
-SMALLEST_U = mpf("1e-330")
+SMALLEST_U = mpf("1e-160")
 GOLDEN_STEPS = 120
 MAX_NEWTON = 400
 

@@ -41,7 +41,7 @@ pub use perram_wertheim::{
     FAST_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS, NEAR_END, SINGULAR_PIVOT,
 };
 pub use prepared::PreparedEllipsoid;
-pub use refine::REFINEMENT_TOL;
+pub use refine::{GAIN_ROUNDING_TOL, REFINEMENT_TOL};
 pub use rotation::{rotation_column, rotation_matrix};
 pub(crate) use sym::dot;
 

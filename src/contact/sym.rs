@@ -24,6 +24,8 @@ pub(crate) trait Arith:
     fn mul_add(self, b: Self, c: Self) -> Self;
     /// `1 / self`.
     fn recip(self) -> Self;
+    /// `|self|`.
+    fn abs(self) -> Self;
 }
 
 impl Arith for f64 {
@@ -46,6 +48,11 @@ impl Arith for f64 {
     fn recip(self) -> Self {
         1.0 / self
     }
+
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f64::abs(self)
+    }
 }
 
 impl Arith for super::lanes::F {
@@ -67,6 +74,11 @@ impl Arith for super::lanes::F {
     #[inline(always)]
     fn recip(self) -> Self {
         1.0 / self
+    }
+
+    #[inline(always)]
+    fn abs(self) -> Self {
+        super::lanes::F::abs(self)
     }
 }
 

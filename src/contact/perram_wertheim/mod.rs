@@ -259,7 +259,9 @@ fn step_leaves_little(d1: f64, d2: f64, d3: f64, gain2: f64, curvature: f64) -> 
 
 /// Newton on the refined residual from the predictor's λ, until the refined gain is
 /// below [`GAIN_TOL`]; the gain is then added. One step is the rule: it is taken here,
-/// and [`correct_further`] takes over when it does not suffice.
+/// and [`correct_further`] takes over when it does not suffice. Where `g` is not
+/// accurate enough for the gain to be added (module `refine::gain`), `f` is evaluated
+/// at the Newton point instead, whose gain is second order in the error of `g`.
 #[inline(always)]
 fn correct(
     p: &Prepared,
@@ -268,6 +270,26 @@ fn correct(
     iterations: u32,
 ) -> Result<Contact, ContactError> {
     if let Some(v) = refiner.at(t) {
+        if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
+            if v.g_trusted {
+                return p.finish(mu2, polished, Stop::Converged, iterations + 1);
+            }
+            return step_first(p, refiner, polished, iterations + 1);
+        }
+    }
+    correct_further(&p.r, &p.q1, &p.q2, p.mu2_exp, t, iterations)
+}
+
+/// [`correct`]'s evaluation at the Newton point `t`.
+#[cold]
+#[inline(never)]
+fn step_first(
+    p: &Prepared,
+    refiner: &Refiner,
+    t: f64,
+    iterations: u32,
+) -> Result<Contact, ContactError> {
+    if let Some(v) = refiner.at(t).filter(|v| v.g_trusted) {
         if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
             return p.finish(mu2, polished, Stop::Converged, iterations + 1);
         }
@@ -313,7 +335,7 @@ fn correct_further(
     let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, [p.l1.det(), p.l2.det(), a, b]);
     let refiner = Refiner::new(&p, &parts, &rational);
     let evaluate = |lambda: f64| -> Result<Refined, ContactError> {
-        match refiner.at(lambda) {
+        match refiner.at(lambda).filter(|v| v.g_trusted) {
             Some(v) => Ok(v),
             None => refined_ldl(lambda, &p.r, &p.q1, &p.q2),
         }
@@ -371,6 +393,7 @@ mod tests {
             g,
             gp: 1.0,
             gpp,
+            g_trusted: true,
         }
     }
 

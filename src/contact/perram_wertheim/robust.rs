@@ -24,19 +24,20 @@
 //! singular for every λ and μ² is not defined:
 //! [`ContactError::CommonNullDirection`].
 //!
-//! **The maximum.** With `x = t̂` and `E_p(x) = Σ k p_k B_k / Σ p_k B_k` the mean index
-//! of `p` in the basis `B_k = (1−x)^{4−k} x^k`, `x(1−x) φ′ = E_N − E_C =: ψ` for
-//! `φ = ln F`, and `dE_p/dx = Var_p / (x(1−x))` (`Var_p` the variance of the index):
-//! both are ratios of sums of non-negative terms, bounded whatever the sizes. The root
-//! of ψ is taken in `(0, ½]` (the pair mirrored if it lies above ½, so that `x` keeps
-//! its relative precision however close λ* is to an end) by Newton's method, with a
-//! bisection of `log x` whenever Newton leaves the bracket or fails to halve it, and
-//! the same test of the gain as the predictor's ([`GAIN_TOL`]). `F` is then a sum of
-//! positive terms in coefficients accurate to about `ε²` (module
-//! [`exact`](super::exact)), so μ² is accurate to a few ulps.
+//! **The maximum.** In `y = λ̂/(1−λ̂)` the basis `(1−λ̂)^{4−k} λ̂^k` is `(1−λ̂)^4 y^k`, so
+//! `F = Σ N_k y^k / Σ C_k y^k`. With `u = ln y` and `E_p`, `Var_p` the mean and the
+//! variance of the index `k` weighed by `p_k y^k`, `φ = ln F` has `dφ/du = E_N − E_C
+//! =: ψ` and `d²φ/du² = Var_N − Var_C`: ratios of sums of non-negative terms, bounded
+//! and free of cancellation whatever the sizes (ψ is summed as one signed double sum).
+//! The root of ψ is taken in `y ≤ 1` (the pair mirrored if it lies above, so that `y`
+//! keeps its relative precision however close λ* is to an end) by Newton's method in
+//! `u`, from the maximiser for two spheres, with a bisection of `u` whenever Newton
+//! leaves the bracket or fails to halve it. `F` is then a sum of positive terms in
+//! coefficients accurate to about `ε²` (module [`exact`](super::exact)), so μ² is
+//! accurate to a few ulps.
 
 use super::exact::{coefficients, rank};
-use super::{GAIN_TOL, MAX_ITERATIONS};
+use super::MAX_ITERATIONS;
 use crate::contact::ldl::Ldl;
 use crate::contact::scale::{exponent, finish, ldexp};
 use crate::contact::{Contact, ContactError, Stop, Sym3, Vec3};
@@ -48,9 +49,16 @@ use crate::contact::{Contact, ContactError, Stop, Sym3, Vec3};
 /// absolute precision of ε.
 pub const NEAR_END: f64 = 1.0 / (1u64 << 24) as f64;
 
-/// Smallest `x` the bisection of `log x` considers: below it `F` differs from its limit
+/// The search stops where the gain its quadratic model predicts in `u = ln y` is at
+/// most `FINAL_GAIN = ε/8` relative (after taking that last step), or the step is at
+/// the rounding of `u`. Tighter than the predictor's [`GAIN_TOL`] on purpose: the model
+/// in `u` holds over steps of order 1 only, so a gain of `GAIN_TOL` may leave ~1e-14
+/// (measured on the size ratios up to 1e150), and this path is cold.
+const FINAL_GAIN: f64 = f64::EPSILON / 8.0;
+
+/// Smallest `y = λ̂/(1−λ̂)` the search considers: below it `F` differs from its limit
 /// at 0 by far less than an ulp.
-const SMALLEST_X: f64 = f64::MIN_POSITIVE;
+const SMALLEST_Y: f64 = f64::MIN_POSITIVE;
 
 /// [`contact_function`](super::contact_function) of `(r, q1, q2)` (finite; `q1`, `q2`
 /// not known to be definite) by the module's method; `mu2_exp` as in
@@ -183,14 +191,12 @@ fn maximise(n: &[f64; 5], c: &[f64; 5], odds: f64) -> Result<Maximum, ContactErr
         return Ok(end(n[n_hi] / c[c_hi], true));
     }
     // The root lies above ½ if ψ(½) > 0: mirrored, it lies in (0, ½].
-    let mirrored = psi(n, c, 0.5).0 > 0.0;
+    let mirrored = psi(n, c, 1.0).0 > 0.0;
     let (n, c) = if mirrored { (&nr, &cr) } else { (n, c) };
-    let start = match mirrored {
-        false => odds / (1.0 + odds),
-        true => 1.0 / (1.0 + odds),
-    };
-    let (value, x, stop, iterations) = root(n, c, start);
-    let (s, t) = if mirrored { (x, 1.0 - x) } else { (1.0 - x, x) };
+    let (value, y, stop, iterations) = root(n, c, if mirrored { 1.0 / odds } else { odds });
+    // λ̂ = y/(1+y) and 1 − λ̂ = 1/(1+y), each to its own relative precision.
+    let (x, rest) = (y / (1.0 + y), 1.0 / (1.0 + y));
+    let (s, t) = if mirrored { (x, rest) } else { (rest, x) };
     Ok(Maximum {
         value,
         s,
@@ -230,7 +236,7 @@ fn rises(n: &[f64], c: &[f64]) -> bool {
 /// The terms `p_k y^{k−l}` (`l` the first index with `p_l > 0`) at `y = x/(1−x)`,
 /// their sum, and the variance `Var_p` of the index they weigh: the sums of the module
 /// docs divided by `(1−x)^4 y^l`, so that they neither overflow nor underflow to 0 for
-/// `x ≤ ½`.
+/// `y ≤ 1`.
 fn moments(p: &[f64; 5], y: f64) -> ([f64; 5], f64, f64) {
     let l = p.iter().position(|&x| x > 0.0).unwrap_or(4);
     let mut w = [0.0; 5];
@@ -248,12 +254,12 @@ fn moments(p: &[f64; 5], y: f64) -> ([f64; 5], f64, f64) {
     (w, sum, var)
 }
 
-/// `ψ = E_N − E_C` and `x(1−x) ψ′ = Var_N − Var_C` at `x ≤ ½`. ψ is summed as
+/// `ψ = E_N − E_C = dφ/du` and `V = Var_N − Var_C = d²φ/du²` at `y = e^u ≤ 1`
+/// (`u = ln y` turns `y d/dy` into `d/du`). ψ is summed as
 /// `Σ (i − j) wN_i wC_j / (ΣwN ΣwC)`, whose terms are as large as the cancellation
 /// at the root makes necessary (each `E` is an index plus a part that may be far below
 /// an ulp of it).
-fn psi(n: &[f64; 5], c: &[f64; 5], x: f64) -> (f64, f64) {
-    let y = x / (1.0 - x);
+fn psi(n: &[f64; 5], c: &[f64; 5], y: f64) -> (f64, f64) {
     let (wn, sn, vn) = moments(n, y);
     let (wc, sc, vc) = moments(c, y);
     let mut cross = 0.0;
@@ -265,70 +271,62 @@ fn psi(n: &[f64; 5], c: &[f64; 5], x: f64) -> (f64, f64) {
     (cross / sn / sc, vn - vc)
 }
 
-/// `F = N/C` at `x ≤ ½`.
-fn ratio(n: &[f64; 5], c: &[f64; 5], x: f64) -> f64 {
-    let y = x / (1.0 - x);
+/// `F = N/C` at `y ≤ 1`.
+fn ratio(n: &[f64; 5], c: &[f64; 5], y: f64) -> f64 {
     let first = |p: &[f64; 5]| p.iter().position(|&v| v > 0.0).unwrap_or(4) as i32;
     let (sn, sc) = (moments(n, y).1, moments(c, y).1);
     y.powi(first(n) - first(c)) * sn / sc
 }
 
-/// The root of ψ in `(0, ½]` (ψ > 0 below it) and `F` there, from `start` if it lies
-/// in that interval (from ¼ if not): Newton's method on
-/// `φ′ = ψ / (x(1−x))`, kept in the bracket, with a bisection of `log x` when the
-/// Newton point leaves it or the bracket has not halved (in `log x`) over two steps.
-/// Stops once the gain `φ′² / (2|φ″|)` is at most [`GAIN_TOL`] (after taking that last
-/// step) or the bracket is a few ulps wide.
+/// The root of ψ in `y ∈ (0, 1]` (ψ > 0 below it), and `F` there: Newton's method on
+/// `ψ = dφ/du` in `u = ln y`, where `φ′ = ψ` and `φ″ = V` carry no cancellation,
+/// from `ln start` if `start` is in range (from `y = ⅓` if not), kept in the bracket;
+/// a bisection of `u` when the Newton point leaves it, `V ≥ 0` (φ not concave there),
+/// or the bracket has not halved over two steps. Stops once the gain `ψ²/(2|V|)` is
+/// at most [`FINAL_GAIN`] or the step at rounding level (after taking that last step),
+/// or the bracket is a few ulps wide. Returns `F`, `y`, why it stopped and the
+/// evaluations.
 fn root(n: &[f64; 5], c: &[f64; 5], start: f64) -> (f64, f64, Stop, u32) {
-    let (mut lo, mut hi) = (0.0f64, 0.5f64);
-    let log_width = |lo: f64, hi: f64| hi.log2() - lo.max(SMALLEST_X).log2();
-    let mut x = if start > SMALLEST_X && start < 0.5 {
-        start
+    let (mut lo, mut hi) = (SMALLEST_Y.ln(), 0.0f64);
+    let mut u = if start > SMALLEST_Y && start < 1.0 {
+        start.ln()
     } else {
-        0.25
+        (1.0f64 / 3.0).ln()
     };
-    let (mut halved_at, mut since) = (log_width(lo, hi), 0);
+    let (mut halved_at, mut since) = (hi - lo, 0);
     for iterations in 1..=MAX_ITERATIONS {
-        let (p, v) = psi(n, c, x);
+        let y = u.exp();
+        let (p, v) = psi(n, c, y);
         if p > 0.0 {
-            lo = x;
+            lo = u;
         } else if p < 0.0 {
-            hi = x;
+            hi = u;
         }
-        let s = 1.0 - x;
-        // φ″ = (V − ψ(s − x)) / (xs)², so the gain is ψ² / (2 den) and the Newton step
-        // ψ xs / den, with den = ψ(s − x) − V > 0 where φ is concave.
-        let den = p * (s - x) - v;
-        let newton = if den > 0.0 {
-            x + p * x * s / den
-        } else {
-            f64::NAN
-        };
-        if p == 0.0 || (den > 0.0 && p * p <= 2.0 * GAIN_TOL * den) {
+        let newton = if v < 0.0 { u - p / v } else { f64::NAN };
+        let inside = newton > lo && newton < hi;
+        let step_at_rounding = (newton - u).abs() <= 4.0 * f64::EPSILON * (1.0 + u.abs());
+        if p == 0.0 || (v < 0.0 && (p * p <= 2.0 * FINAL_GAIN * -v || step_at_rounding)) {
             // The last step, unless it leaves the bracket (where F is flat to far below
             // an ulp and the step is all rounding).
-            let last = if newton > lo && newton < hi {
-                newton
-            } else {
-                x
-            };
+            let last = if inside { newton.exp() } else { y };
             return (ratio(n, c, last), last, Stop::Converged, iterations);
         }
-        if hi - lo <= 4.0 * f64::EPSILON * hi {
-            return (ratio(n, c, x), x, Stop::Converged, iterations);
+        if hi - lo <= 4.0 * f64::EPSILON * (1.0 + u.abs()) {
+            return (ratio(n, c, y), y, Stop::Converged, iterations);
         }
-        let width = log_width(lo, hi);
+        let width = hi - lo;
         if width <= 0.5 * halved_at {
             (halved_at, since) = (width, 0);
         } else {
             since += 1;
         }
-        x = if newton > lo && newton < hi && since < 2 {
+        u = if inside && since < 2 {
             newton
         } else {
             (halved_at, since) = (width, 0);
-            (0.5 * (lo.max(SMALLEST_X).log2() + hi.log2())).exp2()
+            0.5 * (lo + hi)
         };
     }
-    (ratio(n, c, x), x, Stop::MaxIterations, MAX_ITERATIONS)
+    let y = u.exp();
+    (ratio(n, c, y), y, Stop::MaxIterations, MAX_ITERATIONS)
 }

@@ -10,10 +10,15 @@ use crate::contact::lanes::{Mask, F, LANES};
 pub(crate) fn at_lanes(pair: &Pair<F>, lambda: F) -> ([Refined; LANES], Mask) {
     let k = Terms::new(pair, lambda);
     let (bound, negligible) = k.second_order_bound();
+    let plain = k.plain();
+    let [first_a, second_a, first_b, second_b] = k
+        .plain_g_checks(&plain, bound)
+        .map(|(lhs, rhs)| lhs.le(rhs));
+    let g_ok = second_a.and(second_b);
+    let trusted = first_a.and(first_b);
     let negligible = bound.le(negligible);
     let (e0, second) = k.second_order();
     let accepted = second.abs().le(REFINEMENT_TOL * k.num.hi);
-    let plain = k.plain();
     let refined = k.with_second_order(&e0, second);
     let pick = |a: F, b: F| negligible.select(a, b).to_array();
     let (f, h, su) = (
@@ -23,7 +28,9 @@ pub(crate) fn at_lanes(pair: &Pair<F>, lambda: F) -> ([Refined; LANES], Mask) {
     );
     let (uw, wdw) = k.derivative_terms();
     let [t, p, uw, wdw] = [k.t, k.p, uw, wdw].map(F::to_array);
-    let values =
-        std::array::from_fn(|j| Refined::new(f[j], t[j], p[j], h[j], su[j], uw[j], wdw[j]));
-    (values, negligible.or(accepted))
+    let values = std::array::from_fn(|j| Refined {
+        g_trusted: trusted.get(j),
+        ..Refined::new(f[j], t[j], p[j], h[j], su[j], uw[j], wdw[j])
+    });
+    (values, g_ok.and(negligible.or(accepted)))
 }

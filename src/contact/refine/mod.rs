@@ -23,8 +23,10 @@ use super::scale::Prepared;
 use super::sym::{dot, sym_mul, Arith, PencilParts};
 use super::{ContactError, Sym3, Vec3};
 
+mod gain;
 mod lanes;
 
+pub use gain::GAIN_ROUNDING_TOL;
 pub(crate) use lanes::at_lanes;
 
 /// Largest accepted `η² = e₀ᵀρ / rᵀs₀` of the adjugate start (see the module docs):
@@ -43,6 +45,10 @@ pub(crate) struct Refined {
     pub g: f64,
     pub gp: f64,
     pub gpp: f64,
+    /// Whether `g` is accurate enough for the gain `g²/(2g′)` to be added to `f`
+    /// (module [`gain`]); if not, the corrector evaluates `f` at the Newton point
+    /// instead, where the gain is second order in the error of `g`.
+    pub g_trusted: bool,
 }
 
 impl Refined {
@@ -54,6 +60,7 @@ impl Refined {
             g: (2.0 * t - 1.0) * h + p * su,
             gp: 2.0 * h + 2.0 * (1.0 - 2.0 * t) * su - 2.0 * p * uw,
             gpp: -6.0 * su - 6.0 * (1.0 - 2.0 * t) * uw + 6.0 * p * wdw,
+            g_trusted: true,
         }
     }
 }
@@ -140,14 +147,29 @@ impl<'a> Refiner<'a> {
         };
         let k = Terms::new(&pair, lambda);
         let (bound, negligible) = k.second_order_bound();
+        let plain = k.plain();
+        // g good enough for the gain (module gain): to second order, or the LDLᵀ
+        // refinement; to first order, or the corrector steps before it adds it.
+        let [first_a, second_a, first_b, second_b] =
+            k.plain_g_checks(&plain, bound).map(|(lhs, rhs)| lhs <= rhs);
+        if !(second_a && second_b) {
+            return None;
+        }
+        let g_trusted = first_a && first_b;
         if bound <= negligible {
-            return Some(k.refined(k.plain()));
+            return Some(Refined {
+                g_trusted,
+                ..k.refined(plain)
+            });
         }
         let (e0, second) = k.second_order();
         if !(second.abs() <= REFINEMENT_TOL * k.num.hi) {
             return None;
         }
-        Some(k.refined(k.with_second_order(&e0, second)))
+        Some(Refined {
+            g_trusted,
+            ..k.refined(k.with_second_order(&e0, second))
+        })
     }
 }
 
@@ -378,23 +400,30 @@ pub(crate) fn refined_ldl(
         pivot,
         value,
     })?;
+    // Two steps of refinement: s₁ = s₀ + Q⁻¹ρ₀ errs by (ε cond)², and g, which may
+    // cancel far more than f, is taken from s₁ + Q⁻¹ρ₁ (module refine::gain).
     let s0 = ldl.solve(r);
-    let rho = residual(r, &hi, &lo, &s0);
-    let e0 = ldl.solve(&rho);
-    let mut rs = Acc::from_prod(r[0], s0[0]);
-    rs.add_prod(r[1], s0[1]);
-    rs.add_prod(r[2], s0[2]);
-    rs.lo += dot(&s0, &rho) + dot(&e0, &rho);
+    let rho0 = residual(r, &hi, &lo, &s0);
+    let e0 = ldl.solve(&rho0);
+    let s1 = [s0[0] + e0[0], s0[1] + e0[1], s0[2] + e0[2]];
+    let rho = residual(r, &hi, &lo, &s1);
+    let e1 = ldl.solve(&rho);
+    let mut rs = Acc::from_prod(r[0], s1[0]);
+    rs.add_prod(r[1], s1[1]);
+    rs.add_prod(r[2], s1[2]);
+    rs.lo += dot(&s1, &rho) + dot(&e1, &rho);
     let (rs_hi, rs_lo) = rs.pair();
     let (p, pe) = two_prod(t, s);
     let mut f = Acc::from_prod(p, rs_hi);
     f.lo += p * rs_lo + pe * rs_hi;
-    let sol = [s0[0] + e0[0], s0[1] + e0[1], s0[2] + e0[2]];
+    let sol = [s1[0] + e1[0], s1[1] + e1[1], s1[2] + e1[2]];
     let q12: Sym3 = std::array::from_fn(|k| q2[k] - q1[k]);
     let u = sym_mul(&q12, &sol);
     let w = ldl.solve(&u);
     let (su, uw, wdw) = (dot(&sol, &u), dot(&u, &w), dot(&w, &sym_mul(&q12, &w)));
-    Ok(Refined::new(f.value(), t, p, rs_hi, su, uw, wdw))
+    let mut refined = Refined::new(f.value(), t, p, rs_hi, su, uw, wdw);
+    refined.g = gain::g_double_double(t, (rs_hi, rs_lo), (p, pe), q1, q2, &sol);
+    Ok(refined)
 }
 
 #[cfg(test)]
@@ -435,7 +464,10 @@ mod tests {
 
     /// At the reference maximiser (50 digits, rounded to a double, so f is within
     /// ~1e-32 of μ² there), both refinements give μ² to a few ulps: 4 ε allows the
-    /// last few roundings of the double-double sums.
+    /// last few roundings of the double-double sums. The adjugate start is accepted on
+    /// every typical row; on elongated extreme rows it may decline because `g` is not
+    /// good enough for a gain (module `gain`; 40 of 1960 rows here), never with a wrong
+    /// f.
     #[test]
     fn refined_f_at_the_reference_maximiser_is_the_reference_mu2() {
         for name in ["contact_typical.csv", "contact_extreme.csv"] {
@@ -459,7 +491,10 @@ mod tests {
                     "{name} line {}: {by_ldl} vs {mu2}",
                     c.line
                 );
-                let v = refiner.at(lambda).expect("adjugate start accepted");
+                let Some(v) = refiner.at(lambda) else {
+                    assert_ne!(name, "contact_typical.csv", "line {}", c.line);
+                    continue;
+                };
                 let by_adj =
                     s.p.finish(v.f, lambda, crate::contact::Stop::Converged, 0)
                         .unwrap()

@@ -170,6 +170,9 @@ fn eight<const ACCURATE: bool>(
         if !common.get(k) {
             return scalar(k);
         }
+        if accepted.get(k) && !refined[k].g_trusted {
+            return scalar(k);
+        }
         if accepted.get(k) {
             if let Some((mu2, polished)) = finished(&refined[k], t[k], (0.0, 1.0)) {
                 return finish(0, mu2, polished, Stop::Converged, iterations[k] + 1);

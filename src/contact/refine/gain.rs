@@ -1,0 +1,97 @@
+//! Whether `g` is good enough for the gain the corrector adds, and `g` to double-double
+//! accuracy where it is not.
+//!
+//! The corrector adds the Newton gain `g²/(2g′)` to `f`, and `g = (2λ−1) h + p sᵀu`
+//! (`h = rᵀs`, `u = (Q2−Q1)s`, `p = λ(1−λ)`) cancels: near λ* its two terms are equal
+//! and opposite, up to `3e7` times larger than `g` on the reference sets. An error `δg`
+//! moves the gain by `δg (|g| + δg/2) / g′`. In [`Terms::plain`] two errors make `δg`:
+//! - the adjugate start errs by `η` in the norm of `Q` (`η² ≤ bound / (β num)`,
+//!   [`Terms::second_order_bound`]), which moves `sᵀu` by at most `2η √(h uᵀQ⁻¹u)`
+//!   (Cauchy–Schwarz in that norm). For two nearly identical, elongated ellipsoids
+//!   `uᵀQ⁻¹u` is `(δ cond)²` times `h` (`δ` their relative difference): the gain
+//!   was off by 1.2e-14 of μ² at aspect ratio 100 and `δ = 1e-2`;
+//! - rounding: `sᵀu` from the entries of `Q2 − Q1` errs by up to `8ε |s|ᵀ|Q2−Q1||s|`,
+//!   which is `ε cond` times `sᵀu` when `s` lies along a thin axis, and `g` itself by
+//!   `4ε |(2λ−1)h|`.
+//!
+//! The adjugate start's values are used only if that moves μ² by at most
+//! [`GAIN_ROUNDING_TOL`] (checked as products, without division or square root);
+//! otherwise the corrector takes the LDLᵀ refinement ([`super::refined_ldl`]), which
+//! refines `s` twice and forms `g` in double-double ([`g_double_double`]).
+
+use super::*;
+
+/// Largest relative error of μ² that the error of `g` may add through the gain:
+/// `ε/8`, as for the truncation ([`CUBIC_TERM_TOL`](crate::contact::CUBIC_TERM_TOL)).
+pub const GAIN_ROUNDING_TOL: f64 = f64::EPSILON / 8.0;
+
+/// The rounding of `sᵀ(Q2−Q1)s` in doubles, in units of `ε |s|ᵀ|Q2−Q1||s|`: the
+/// difference of the entries, three products and two sums in `(Q2−Q1)s`, three and two
+/// in the dot product, with room (first order: 6).
+const SU_ROUNDING: f64 = 8.0;
+
+/// The rounding of `(2λ−1)h + p sᵀu` given its terms, in units of `ε |(2λ−1)h|`.
+const G_ROUNDING: f64 = 4.0;
+
+impl<T: Arith> Terms<'_, T> {
+    /// Pairs `(lhs, rhs)`: the plain values (`plain`, with `bound` of
+    /// [`Terms::second_order_bound`]) give a good enough `g` where `lhs ≤ rhs` for all
+    /// (module docs). With `δg ≤ A + B`, `A² = 4p² η² h uᵀQ⁻¹u` (the start) and
+    /// `B = ε(8p |s|ᵀ|Q2−Q1||s| + 4|(2λ−1)h|)` (rounding), and `T` the budget
+    /// `GAIN_ROUNDING_TOL · f g′`: `A|g|`, `B|g|`, `A²` and `B²` each at most `T/4`,
+    /// the terms in `A²` multiplied through by `β num`.
+    #[inline(always)]
+    pub fn plain_g_checks(&self, plain: &(T, T, T), bound: T) -> [(T, T); 4] {
+        let (f, h, su) = *plain;
+        let one = T::constant(1.0);
+        let uw = self.uw * self.inv * self.inv * self.inv;
+        let a = self.t.times(2.0) - one;
+        let g = a * h + self.p * su;
+        let gp = (h + (one - self.t.times(2.0)) * su - self.p * uw).times(2.0);
+        let quarter = f * gp.times(0.25 * GAIN_ROUNDING_TOL);
+        // A² · β num.
+        let a2 = (self.p * self.p * bound * h * uw).times(4.0);
+        let scale = self.beta * self.num.hi;
+        let ax = self.x.map(T::abs);
+        let aq = (*self.q12).map(T::abs);
+        let s_m_s = dot(&ax, &sym_mul(&aq, &ax)) * self.i2;
+        let b = (self.p * s_m_s).times(SU_ROUNDING * f64::EPSILON)
+            + (a * h).abs().times(G_ROUNDING * f64::EPSILON);
+        let g = g.abs();
+        [
+            (a2 * g * g, quarter * quarter * scale),
+            (a2, quarter * scale),
+            (b * g, quarter),
+            (b * b, quarter),
+        ]
+    }
+}
+
+/// `g = (2λ−1) h + p sᵀ(Q2−Q1)s` at λ = `t` (`s = 1 − t` as the pencil takes it),
+/// in double-double from `h = rᵀs` and `p = t s` as double-doubles: `Q2 − Q1` entry by
+/// entry and every product exact, rounded once.
+pub(super) fn g_double_double(
+    t: f64,
+    h: (f64, f64),
+    p: (f64, f64),
+    q1: &Sym3,
+    q2: &Sym3,
+    s: &Vec3,
+) -> f64 {
+    const UPPER: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
+    let mut su = Acc::new(0.0);
+    for (k, &(i, j)) in UPPER.iter().enumerate() {
+        let weight = if i == j { 1.0 } else { 2.0 };
+        let (m, me) = two_sum(q2[k], -q1[k]);
+        let (ss, sse) = two_prod(s[i], s[j]);
+        su.add_prod(weight * m, ss);
+        su.lo += weight * (m * sse + me * ss);
+    }
+    let (su_hi, su_lo) = su.pair();
+    let (a, ae) = two_sum(2.0 * t, -1.0);
+    let mut g = Acc::from_prod(a, h.0);
+    g.lo += a * h.1 + ae * h.0;
+    g.add_prod(p.0, su_hi);
+    g.lo += p.0 * su_lo + p.1 * su_hi;
+    g.value()
+}
