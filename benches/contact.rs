@@ -136,12 +136,13 @@ enum Answers {
 
 type PreparedPair = (Vec3, PreparedEllipsoid, PreparedEllipsoid);
 
-fn prepare(set: &Set) -> Vec<PreparedPair> {
-    let p =
-        |q: &Sym3| PreparedEllipsoid::new(&Ellipsoid::from_quadratic_form(*q).unwrap()).unwrap();
+/// The pairs prepared for `overlaps_prepared`; `None` where a form is not an ellipsoid
+/// it takes (the semi-definite forms of the degenerate set).
+fn prepare(set: &Set) -> Vec<Option<PreparedPair>> {
+    let p = |q: &Sym3| PreparedEllipsoid::new(&Ellipsoid::from_quadratic_form(*q).ok()?).ok();
     set.pairs
         .iter()
-        .map(|(r, q1, q2)| (*r, p(q1), p(q2)))
+        .map(|(r, q1, q2)| Some((*r, p(q1)?, p(q2)?)))
         .collect()
 }
 
@@ -149,13 +150,16 @@ fn answer_all(
     subject: Subject,
     set: &Set,
     hoomd: &[Option<HoomdPair>],
-    prepared: &[PreparedPair],
+    prepared: &[Option<PreparedPair>],
 ) -> Answers {
     match subject {
         Subject::Prepared => Answers::Decisions(
             prepared
                 .iter()
-                .map(|(r, a, b)| overlaps_prepared(r, a, b).ok())
+                .map(|p| {
+                    p.as_ref()
+                        .and_then(|(r, a, b)| overlaps_prepared(r, a, b).ok())
+                })
                 .collect(),
         ),
         Subject::Ours(m) if m.is_decision() => Answers::Decisions(
@@ -297,6 +301,7 @@ fn main() {
     let sets = [
         load("typical", "contact_typical.csv"),
         load("extreme", "contact_extreme.csv"),
+        load("degenerate", "contact_degenerate.csv"),
     ];
     let mut subjects: Vec<Subject> = Method::ALL.iter().map(|&m| Subject::Ours(m)).collect();
     subjects.push(Subject::Prepared);
@@ -324,6 +329,7 @@ fn main() {
             .filter_map(|(r, q1, q2)| hoomd_pair(r, q1, q2))
             .collect();
         let prepared = prepare(set);
+        let prepared_ok: Vec<PreparedPair> = prepared.iter().flatten().cloned().collect();
         let mut overlap_ns = None;
         let mut hoomd_ns = None;
         for &subject in &subjects {
@@ -333,7 +339,7 @@ fn main() {
                     m.time(&set.pairs, MIN_ROUNDS, MIN_SECONDS)
                         .ns_per_call_median
                 }
-                Subject::Prepared => time_each(&prepared, |(r, a, b)| {
+                Subject::Prepared => time_each(&prepared_ok, |(r, a, b)| {
                     overlaps_prepared(r, a, b).unwrap_or(false)
                 }),
                 Subject::Hoomd => time_each(&hoomd_ok, |p| p.a.intersects_at(&p.b, &p.v, &p.o)),
@@ -347,10 +353,10 @@ fn main() {
             let all = stats(&answers, set, |_| true);
             let name = subject.name();
             report.push_str(&row(&name, set.name, Some(ns), &all, subject.is_decision()));
-            if !subject.is_decision() {
+            if !subject.is_decision() && set.name != "degenerate" {
                 points.push((name.clone(), set.name, ns, all.max));
             }
-            if set.name == "extreme" {
+            if set.name != "typical" {
                 let mut cats: Vec<&String> = set.category.iter().collect();
                 cats.sort();
                 cats.dedup();
@@ -373,7 +379,7 @@ fn main() {
     let (ratios, per_category): (Vec<&str>, Vec<&str>) = by_category
         .lines()
         .partition(|l| l.starts_with("On the ") || l.starts_with("<!--"));
-    report.push_str("\nExtreme set by category:\n\n");
+    report.push_str("\nExtreme and degenerate sets by category:\n\n");
     report.push_str(HEADER);
     for l in per_category.iter().filter(|l| !l.is_empty()) {
         report.push_str(l);

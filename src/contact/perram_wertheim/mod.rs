@@ -82,7 +82,8 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
     if needs_no_rescaling(r12, q1, q2) && *r12 != [0.0; 3] {
         if let (Ok(l1), Ok(l2)) = (Ldl::factor(q1), Ldl::factor(q2)) {
             // Built here rather than returned in an `Option`, which costs a copy.
-            return solve_prepared(&Prepared::unscaled(r12, q1, q2, l1, l2), accurate);
+            let p = Prepared::unscaled(r12, q1, q2, l1, l2);
+            return solve_prepared(&p, accurate, (r12, q1, q2));
         }
     }
     solve_otherwise(r12, q1, q2, accurate)
@@ -114,22 +115,30 @@ fn solve_otherwise(
             iterations: 0,
         });
     }
-    solve_prepared(&p, accurate)
+    solve_prepared(&p, accurate, (r12, q1, q2))
 }
 
+/// The common path for `p`, prepared from `input` (which the hand-overs take, so that
+/// `p` can stay in registers).
 #[inline(always)]
-fn solve_prepared(p: &Prepared, accurate: bool) -> Result<Contact, ContactError> {
+fn solve_prepared(
+    p: &Prepared,
+    accurate: bool,
+    input: (&Vec3, &Sym3, &Sym3),
+) -> Result<Contact, ContactError> {
     let (parts, (a, b), t0) = pieces(p);
-    if !(NEAR_END..=1.0 - NEAR_END).contains(&t0) {
-        return near_an_end(p);
-    }
+    let inside = (NEAR_END..=1.0 - NEAR_END).contains(&t0);
     if !accurate {
-        if !well_conditioned(&sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b)) {
-            return accurate_instead(p);
+        // One branch for both hand-overs (a second cost the fast path 3 ns).
+        if !(inside & well_conditioned(&sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b))) {
+            return handed_over(input, inside);
         }
         let rational = Rational::from_coefficients(a, b);
         let (t, stop, iterations) = predict_with(&rational, t0, HALLEY_FINAL_GAIN, true)?;
         return p.finish(rational.f(t), t, stop, iterations);
+    }
+    if !inside {
+        return handed_over(input, false);
     }
     let rational = Rational::from_coefficients(a, b);
     // Built before the predictor runs, so that its work fills the predictor's latency.
@@ -141,20 +150,20 @@ fn solve_prepared(p: &Prepared, accurate: bool) -> Result<Contact, ContactError>
     correct(p, &refiner, t, iterations)
 }
 
-/// The fast path's answer for a pair whose `κ` is above [`FAST_MAX_CONDITION`]: the
-/// accurate one, bitwise [`contact_function`]'s.
+/// The answer for a pair [`solve_prepared`] hands over: one whose maximiser for two
+/// spheres lies within [`NEAR_END`] of 0 or 1 (`inside` false) goes to
+/// [`robust::solve_robust`]; the fast path's pair whose `κ` is above
+/// [`FAST_MAX_CONDITION`] gets the accurate answer, bitwise [`contact_function`]'s.
 #[cold]
 #[inline(never)]
-fn accurate_instead(p: &Prepared) -> Result<Contact, ContactError> {
-    solve_prepared(p, true)
-}
-
-/// Both methods' answer for a pair whose maximiser for two spheres lies within
-/// [`NEAR_END`] of 0 or 1.
-#[cold]
-#[inline(never)]
-fn near_an_end(p: &Prepared) -> Result<Contact, ContactError> {
-    solve_robust(&p.r, &p.q1, &p.q2, p.mu2_exp)
+fn handed_over(
+    (r12, q1, q2): (&Vec3, &Sym3, &Sym3),
+    inside: bool,
+) -> Result<Contact, ContactError> {
+    match inside {
+        true => solve(r12, q1, q2, true),
+        false => solve_robust(r12, q1, q2, 0),
+    }
 }
 
 /// The pieces of the rational form of a prepared pair (its coefficients unscaled), and
@@ -231,7 +240,7 @@ fn predict_with(
                 && (gain2 <= 2.0 * GAIN_TOL * curvature
                     || (halley_ok
                         && gain2 <= 2.0 * switch * curvature
-                        && (!remainder || step_leaves_little(d1, d2, d3, gain2, curvature)))));
+                        && (!remainder || step_leaves_little(d1, d2, d3)))));
         let stalled = next == t || hi - lo <= f64::EPSILON * hi;
         t = next;
         if converged || stalled {
@@ -241,21 +250,24 @@ fn predict_with(
     Ok((t, Stop::MaxIterations, iterations))
 }
 
-/// Whether a Halley step from a point of predicted gain `G` leaves a gain of at most
-/// [`GAIN_TOL`]. Halley's error after the step is about `C δ³`, `δ = φ′/φ″` the Newton
-/// step and `C ≈ φ‴² / (4φ″²)` (the term in `φ⁗` left out is of the same order and of
-/// opposite sign where the poles dominate, so this overestimates there), which leaves the
-/// gain `|φ″| C² δ⁶ / 2 = x⁴ G / 16` with `x = φ′φ‴ / φ″² = D1 D3 / D2²`. Away from the
-/// ends `x ~ δ` and this is `~G³`; within `1/ρ` of an end, for sizes in ratio ρ, the
-/// poles of `1/s` and of `b′/b` nearly cancel in φ″, `x ~ √(ρ G)`, and the step from
-/// `G = 1e-6` left up to 8e-8 before this test (the `size_ratio` reference pairs).
+/// Whether a Halley step from a point of predicted gain `G ≤ HALLEY_FINAL_GAIN` leaves
+/// a gain of at most [`GAIN_TOL`]. Halley's error after the step is about `C δ³`,
+/// `δ = φ′/φ″` the Newton step and `C ≈ φ‴² / (4φ″²)` (the term in `φ⁗` left out is of
+/// the same order and of opposite sign where the poles dominate, so this overestimates
+/// there), which leaves the gain `|φ″| C² δ⁶ / 2 = x⁴ G / 16` with
+/// `x = φ′φ‴ / φ″² = D1 D3 / D2²`. Away from the ends `x ~ δ`; within `1/ρ` of an end,
+/// for sizes in ratio ρ, the poles of `1/s` and of `b′/b` nearly cancel in φ″,
+/// `x ~ √(ρ G)`, and the step from `G = 1e-6` left up to 8e-8 before this test (the
+/// `size_ratio` reference pairs). With `G ≤ HALLEY_FINAL_GAIN`, `|x| ≤ STEP_X_MAX`
+/// suffices, and is tested as `|D1 D3| ≤ STEP_X_MAX · D2²`, without a division.
 #[inline(always)]
-fn step_leaves_little(d1: f64, d2: f64, d3: f64, gain2: f64, curvature: f64) -> bool {
-    let x = d1 * d3 / (d2 * d2);
-    let x2 = x * x;
-    // x⁴ G / 16 ≤ GAIN_TOL with G = gain2 / (2 curvature).
-    x2 * x2 * gain2 <= (32.0 * GAIN_TOL) * curvature
+fn step_leaves_little(d1: f64, d2: f64, d3: f64) -> bool {
+    (d1 * d3).abs() <= STEP_X_MAX * (d2 * d2)
 }
+
+/// The bound on `x` of [`step_leaves_little`]: `x⁴ G / 16 ≤ 0.11⁴ · 1e-6 / 16 =
+/// 9.15e-12 ≤ GAIN_TOL` for `G ≤ HALLEY_FINAL_GAIN`.
+const STEP_X_MAX: f64 = 0.11;
 
 /// Newton on the refined residual from the predictor's λ, until the refined gain is
 /// below [`GAIN_TOL`]; the gain is then added. One step is the rule: it is taken here,

@@ -126,11 +126,7 @@ fn eight<const ACCURATE: bool>(
         .and(t0.le(F::splat(1.0 - NEAR_END)));
     let conditioned = match ACCURATE {
         true => Mask::splat(true),
-        false => sizes(&r, &q1, &q2, &parts, &ca, &cb)
-            .iter()
-            .fold(Mask::splat(true), |m, &(bound, x)| {
-                m.and(bound.le(FAST_MAX_CONDITION * x))
-            }),
+        false => well_conditioned_lanes(&sizes(&r, &q1, &q2, &parts, &ca, &cb)),
     };
     let candidates = plain.and(factored).and(inside).and(conditioned);
     let (t, iterations, predicted) = predict_lanes(&poly, t0, switch, candidates, !ACCURATE);
@@ -181,6 +177,18 @@ fn eight<const ACCURATE: bool>(
         let (r12, q1, q2) = &pairs[k];
         correct_further(r12, q1, q2, 0, t[k], iterations[k])
     })
+}
+
+/// [`well_conditioned`], lane by lane: the same differences, maxima and minima.
+#[inline(always)]
+fn well_conditioned_lanes(sizes: &[(F, F); 5]) -> Mask {
+    let (mut worst, mut smallest) = (F::splat(f64::NEG_INFINITY), F::splat(f64::INFINITY));
+    for &(bound, x) in sizes {
+        let excess = bound - FAST_MAX_CONDITION * x;
+        worst = excess.gt(worst).select(excess, worst);
+        smallest = x.lt(smallest).select(x, smallest);
+    }
+    worst.le(F::splat(0.0)).and(smallest.gt(F::splat(0.0)))
 }
 
 /// [`Rational::new`]'s scaling of a set of coefficients, lane by lane: the exponents
@@ -238,9 +246,7 @@ fn predict_lanes(
         let mut final_step = halley_ok.and(gain2.le((2.0 * switch) * curvature));
         if remainder {
             // step_leaves_little, lane by lane.
-            let x = d1 * d3 / (d2 * d2);
-            let x2 = x * x;
-            final_step = final_step.and((x2 * x2 * gain2).le((32.0 * GAIN_TOL) * curvature));
+            final_step = final_step.and((d1 * d3).abs().le(STEP_X_MAX * (d2 * d2)));
         }
         let small_gain = gain2.le((2.0 * GAIN_TOL) * curvature).or(final_step);
         let converged = d1.eq(zero).or(curvature.gt(zero).and(small_gain));
