@@ -42,9 +42,35 @@ pub const CORRECTOR_SWITCH_GAIN: f64 = 1e-4;
 
 /// The contact function μ² of two ellipsoids and its maximiser λ, in double precision.
 ///
-/// The predictor of [`contact_function`] alone, with `f` from the Bernstein form:
-/// relative error about `ε · cond(Q(λ*))`, a few ulps for moderate shapes, up to ~1e-7
-/// for aspect ratios of 1e4. Use [`contact_function`] when that matters.
+/// The predictor of [`contact_function`] alone, with `f` from the Bernstein form. Its
+/// error bound is stated in terms of a condition number `κ` it computes from the
+/// coefficients of `f` ([`fast_condition`]; `κ ≥ 3`, below 3.6e3 on the typical
+/// reference set): the rounding of `f` is at most [`FAST_ROUNDING`]` · ε · κ` and the
+/// truncation at most [`GAIN_TOL`]. It answers a pair itself only if
+/// `κ ≤` [`FAST_MAX_CONDITION`]` = 2^15`, so that whenever it reports
+/// [`Stop::Converged`] the relative error of μ² is at most [`FAST_TOL`]` ≈ 5.8e-11`.
+/// Other pairs (`κ` larger: nearly identical elongated ellipsoids, whose coefficients
+/// cancel, or aspect ratios near 1e4; forms that do not factor; λ* within
+/// [`NEAR_END`] of an end) get [`contact_function`]'s answer, a few ulps, bitwise.
+/// Measured: 4.3e-14 on the typical set, at most 1.3e-12 on every extreme category
+/// (`tests/contact_reference.rs`, BENCHMARKS.md).
+///
+/// ```
+/// use grainpack::contact::{
+///     contact_function, contact_function_fast, fast_condition, Ellipsoid, Stop,
+///     FAST_MAX_CONDITION,
+/// };
+/// // Two needles of aspect ratio 100, one a hair longer: the coefficients of f cancel,
+/// // κ is above FAST_MAX_CONDITION, and the accurate path answers.
+/// let a = Ellipsoid::new([1.0, 0.01, 0.01], [0.9, 0.3, 0.3, 0.1]).unwrap();
+/// let mut q2 = a.q;
+/// q2[0] *= 1.0 + 1e-9;
+/// let r = [0.01, 0.02, 0.005];
+/// assert!(fast_condition(&r, &a.q, &q2).unwrap() > FAST_MAX_CONDITION);
+/// let fast = contact_function_fast(&r, &a.q, &q2).unwrap();
+/// assert_eq!(fast, contact_function(&r, &a.q, &q2).unwrap());
+/// assert_eq!(fast.stop, Stop::Converged);
+/// ```
 pub fn contact_function_fast(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Contact, ContactError> {
     solve(r12, q1, q2, false)
 }
@@ -61,6 +87,21 @@ pub fn contact_function_fast(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Contact
 ///
 /// `r12 = 0` gives `μ² = 0`, `λ = ½`, [`Stop::Exact`]. Inputs are rescaled by powers
 /// of two, so μ² underflows gracefully towards 0 and overflows as an error.
+///
+/// Semi-definite forms are accepted where μ² is defined: a flat disc (rank 2), a
+/// zero-radius needle (rank 1) or a point (`Q = 0`) against a definite form, or two
+/// singular forms with no common null direction. Forms whose pivots are within
+/// [`SINGULAR_PIVOT`] of zero count as singular. μ² may then be the limit of `f` at an
+/// end (a point against a ball: `rᵀQ2⁻¹r` at `λ = 0`, [`Stop::Exact`]). Two forms
+/// singular along a common direction (coplanar discs, two needles) give
+/// [`ContactError::CommonNullDirection`], and indefinite ones
+/// [`ContactError::NotPositiveDefinite`]. Sizes any distance apart are answered (two
+/// balls of radii 1 and 1e-150 at distance 1: μ² = 1). μ² beyond double range is
+/// [`ContactError::Overflow`]. These pairs, forms thinner than [`MIN_RELATIVE_PIVOT`]
+/// resolves, and pairs whose λ* is within [`NEAR_END`] of an end, go through a slower
+/// path with coefficients in double-double (module `robust`), which is as accurate.
+///
+/// [`MIN_RELATIVE_PIVOT`]: super::MIN_RELATIVE_PIVOT
 ///
 /// ```
 /// use grainpack::contact::{contact_function, Ellipsoid};
@@ -269,118 +310,9 @@ fn step_leaves_little(d1: f64, d2: f64, d3: f64) -> bool {
 /// 9.15e-12 ≤ GAIN_TOL` for `G ≤ HALLEY_FINAL_GAIN`.
 const STEP_X_MAX: f64 = 0.11;
 
-/// Newton on the refined residual from the predictor's λ, until the refined gain is
-/// below [`GAIN_TOL`]; the gain is then added. One step is the rule: it is taken here,
-/// and [`correct_further`] takes over when it does not suffice. Where `g` is not
-/// accurate enough for the gain to be added (module `refine::gain`), `f` is evaluated
-/// at the Newton point instead, whose gain is second order in the error of `g`.
-#[inline(always)]
-fn correct(
-    p: &Prepared,
-    refiner: &Refiner,
-    t: f64,
-    iterations: u32,
-) -> Result<Contact, ContactError> {
-    if let Some(v) = refiner.at(t) {
-        if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
-            if v.g_trusted {
-                return p.finish(mu2, polished, Stop::Converged, iterations + 1);
-            }
-            return step_first(p, refiner, polished, iterations + 1);
-        }
-    }
-    correct_further(&p.r, &p.q1, &p.q2, p.mu2_exp, t, iterations)
-}
-
-/// [`correct`]'s evaluation at the Newton point `t`.
-#[cold]
-#[inline(never)]
-fn step_first(
-    p: &Prepared,
-    refiner: &Refiner,
-    t: f64,
-    iterations: u32,
-) -> Result<Contact, ContactError> {
-    if let Some(v) = refiner.at(t).filter(|v| v.g_trusted) {
-        if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
-            return p.finish(mu2, polished, Stop::Converged, iterations + 1);
-        }
-    }
-    correct_further(&p.r, &p.q1, &p.q2, p.mu2_exp, t, iterations)
-}
-
-/// μ² and the polished λ (kept in `bracket`) if the Newton model at `t` has converged:
-/// its gain `g²/(2g′)` is at most [`GAIN_TOL`]` · f` and is added, and the next Taylor
-/// term it leaves out, `|g″| Δ³ / 6` with `Δ = g/g′`, is at most [`CUBIC_TERM_TOL`]` · f`.
-#[inline(always)]
-fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64, f64)> {
-    let step = v.g / v.gp;
-    let gain = 0.5 * v.g * step;
-    let cubic6 = v.gpp.abs() * (step * step * step).abs(); // 6 × the cubic term
-    (v.gp > 0.0 && gain <= GAIN_TOL * v.f && cubic6 <= 6.0 * CUBIC_TERM_TOL * v.f)
-        .then(|| (v.f + gain, (t - step).clamp(bracket.0, bracket.1)))
-}
-
-/// Largest relative size of the third-order Taylor term that the corrector's result may
-/// leave out: `ε/8`. The quadratic gain test alone ([`GAIN_TOL`]) bounds it by
-/// `GAIN_TOL^{3/2}` only where `f` is curved like its poles; when λ* is within ~1e-6 of
-/// 0 or 1 the poles nearly cancel and the term can be ~1e3 times that.
-pub const CUBIC_TERM_TOL: f64 = f64::EPSILON / 8.0;
-
-/// The corrector's Newton iteration, bracketed afresh (the predictor's bracket rests on
-/// the rational form's rounding), with the LDLᵀ refinement wherever the adjugate start
-/// is not good enough. Takes the (scaled) pair itself and rebuilds what it needs, so
-/// that the common path keeps its working values in registers.
-#[cold]
-#[inline(never)]
-fn correct_further(
-    r: &Vec3,
-    q1: &Sym3,
-    q2: &Sym3,
-    mu2_exp: i32,
-    t: f64,
-    mut iterations: u32,
-) -> Result<Contact, ContactError> {
-    let p = Prepared::new(r, q1, q2)?.with_mu2_exp(mu2_exp);
-    let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
-    let parts = PencilParts::new(&p.q1, &p.q2);
-    let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, [p.l1.det(), p.l2.det(), a, b]);
-    let refiner = Refiner::new(&p, &parts, &rational);
-    let evaluate = |lambda: f64| -> Result<Refined, ContactError> {
-        match refiner.at(lambda).filter(|v| v.g_trusted) {
-            Some(v) => Ok(v),
-            None => refined_ldl(lambda, &p.r, &p.q1, &p.q2),
-        }
-    };
-    let (mut lo, mut hi) = (0.0, 1.0);
-    let mut lambda = t;
-    for _ in 0..MAX_ITERATIONS {
-        iterations += 1;
-        let v = evaluate(lambda)?;
-        if !(v.gp > 0.0) {
-            return p.finish(v.f, lambda, Stop::Converged, iterations);
-        }
-        if let Some((mu2, polished)) = finished(&v, lambda, (lo, hi)) {
-            return p.finish(mu2, polished, Stop::Converged, iterations);
-        }
-        if v.g > 0.0 {
-            hi = lambda;
-        } else {
-            lo = lambda;
-        }
-        let next = lambda - v.g / v.gp;
-        lambda = if next > lo && next < hi {
-            next
-        } else {
-            0.5 * (lo + hi)
-        };
-    }
-    let v = evaluate(lambda)?;
-    p.finish(v.f, lambda, Stop::MaxIterations, iterations)
-}
-
 mod batch;
 mod condition;
+mod corrector;
 mod exact;
 mod robust;
 #[cfg(test)]
@@ -391,41 +323,8 @@ mod timing;
 pub use batch::{contact_functions, contact_functions_fast};
 pub use condition::{fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL};
 use condition::{sizes, well_conditioned};
+pub use corrector::CUBIC_TERM_TOL;
+use corrector::{correct, correct_further, finished};
 pub use exact::SINGULAR_PIVOT;
 use robust::solve_robust;
 pub use robust::NEAR_END;
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn refined(g: f64, gpp: f64) -> Refined {
-        Refined {
-            f: 1.0,
-            g,
-            gp: 1.0,
-            gpp,
-            g_trusted: true,
-        }
-    }
-
-    /// A small quadratic gain is accepted and added, and the step polishes λ...
-    #[test]
-    fn corrector_adds_a_small_gain() {
-        let (mu2, lambda) = finished(&refined(1e-6, 1.0), 0.5, (0.0, 1.0)).unwrap();
-        assert_eq!((mu2, lambda), (1.0 + 0.5e-12, 0.5 - 1e-6));
-    }
-
-    /// ...unless the third-order term left out is above ε/8 (here 1e10 · 1e-18 / 6),
-    /// or the gain is above GAIN_TOL, or the curvature has the wrong sign.
-    #[test]
-    fn corrector_refuses_large_cubic_terms_and_gains() {
-        assert!(finished(&refined(1e-6, 1e10), 0.5, (0.0, 1.0)).is_none());
-        assert!(finished(&refined(1e-5, 1.0), 0.5, (0.0, 1.0)).is_none());
-        let flat = Refined {
-            gp: -1.0,
-            ..refined(1e-9, 1.0)
-        };
-        assert!(finished(&flat, 0.5, (0.0, 1.0)).is_none());
-    }
-}

@@ -1,0 +1,152 @@
+//! The corrector of [`contact_function`](super::contact_function): Newton steps on the
+//! residual `g = −f′` evaluated by [`refine`](crate::contact::refine), from the
+//! predictor's λ.
+
+use super::GAIN_TOL;
+use super::{refined_ldl, PencilParts, Rational, MAX_ITERATIONS};
+use super::{Contact, ContactError, Prepared, Refined, Refiner, Stop, Sym3, Vec3};
+
+/// Newton on the refined residual from the predictor's λ, until the refined gain is
+/// below [`GAIN_TOL`]; the gain is then added. One step is the rule: it is taken here,
+/// and [`correct_further`] takes over when it does not suffice. Where `g` is not
+/// accurate enough for the gain to be added (module `refine::gain`), `f` is evaluated
+/// at the Newton point instead, whose gain is second order in the error of `g`.
+#[inline(always)]
+pub(super) fn correct(
+    p: &Prepared,
+    refiner: &Refiner,
+    t: f64,
+    iterations: u32,
+) -> Result<Contact, ContactError> {
+    if let Some(v) = refiner.at(t) {
+        if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
+            if v.g_trusted {
+                return p.finish(mu2, polished, Stop::Converged, iterations + 1);
+            }
+            return step_first(p, refiner, polished, iterations + 1);
+        }
+    }
+    correct_further(&p.r, &p.q1, &p.q2, p.mu2_exp, t, iterations)
+}
+
+/// [`correct`]'s evaluation at the Newton point `t`.
+#[cold]
+#[inline(never)]
+fn step_first(
+    p: &Prepared,
+    refiner: &Refiner,
+    t: f64,
+    iterations: u32,
+) -> Result<Contact, ContactError> {
+    if let Some(v) = refiner.at(t).filter(|v| v.g_trusted) {
+        if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
+            return p.finish(mu2, polished, Stop::Converged, iterations + 1);
+        }
+    }
+    correct_further(&p.r, &p.q1, &p.q2, p.mu2_exp, t, iterations)
+}
+
+/// μ² and the polished λ (kept in `bracket`) if the Newton model at `t` has converged:
+/// its gain `g²/(2g′)` is at most [`GAIN_TOL`]` · f` and is added, and the next Taylor
+/// term it leaves out, `|g″| Δ³ / 6` with `Δ = g/g′`, is at most [`CUBIC_TERM_TOL`]` · f`.
+#[inline(always)]
+pub(super) fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64, f64)> {
+    let step = v.g / v.gp;
+    let gain = 0.5 * v.g * step;
+    let cubic6 = v.gpp.abs() * (step * step * step).abs(); // 6 × the cubic term
+    (v.gp > 0.0 && gain <= GAIN_TOL * v.f && cubic6 <= 6.0 * CUBIC_TERM_TOL * v.f)
+        .then(|| (v.f + gain, (t - step).clamp(bracket.0, bracket.1)))
+}
+
+/// Largest relative size of the third-order Taylor term that the corrector's result may
+/// leave out: `ε/8`. The quadratic gain test alone ([`GAIN_TOL`]) bounds it by
+/// `GAIN_TOL^{3/2}` only where `f` is curved like its poles; when λ* is within ~1e-6 of
+/// 0 or 1 the poles nearly cancel and the term can be ~1e3 times that.
+pub const CUBIC_TERM_TOL: f64 = f64::EPSILON / 8.0;
+
+/// The corrector's Newton iteration, bracketed afresh (the predictor's bracket rests on
+/// the rational form's rounding), with the LDLᵀ refinement wherever the adjugate start
+/// is not good enough. Takes the (scaled) pair itself and rebuilds what it needs, so
+/// that the common path keeps its working values in registers.
+#[cold]
+#[inline(never)]
+pub(super) fn correct_further(
+    r: &Vec3,
+    q1: &Sym3,
+    q2: &Sym3,
+    mu2_exp: i32,
+    t: f64,
+    mut iterations: u32,
+) -> Result<Contact, ContactError> {
+    let p = Prepared::new(r, q1, q2)?.with_mu2_exp(mu2_exp);
+    let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
+    let parts = PencilParts::new(&p.q1, &p.q2);
+    let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, [p.l1.det(), p.l2.det(), a, b]);
+    let refiner = Refiner::new(&p, &parts, &rational);
+    let evaluate = |lambda: f64| -> Result<Refined, ContactError> {
+        match refiner.at(lambda).filter(|v| v.g_trusted) {
+            Some(v) => Ok(v),
+            None => refined_ldl(lambda, &p.r, &p.q1, &p.q2),
+        }
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let mut lambda = t;
+    for _ in 0..MAX_ITERATIONS {
+        iterations += 1;
+        let v = evaluate(lambda)?;
+        if !(v.gp > 0.0) {
+            return p.finish(v.f, lambda, Stop::Converged, iterations);
+        }
+        if let Some((mu2, polished)) = finished(&v, lambda, (lo, hi)) {
+            return p.finish(mu2, polished, Stop::Converged, iterations);
+        }
+        if v.g > 0.0 {
+            hi = lambda;
+        } else {
+            lo = lambda;
+        }
+        let next = lambda - v.g / v.gp;
+        lambda = if next > lo && next < hi {
+            next
+        } else {
+            0.5 * (lo + hi)
+        };
+    }
+    let v = evaluate(lambda)?;
+    p.finish(v.f, lambda, Stop::MaxIterations, iterations)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn refined(g: f64, gpp: f64) -> Refined {
+        Refined {
+            f: 1.0,
+            g,
+            gp: 1.0,
+            gpp,
+            g_trusted: true,
+        }
+    }
+
+    /// A small quadratic gain is accepted and added, and the step polishes λ...
+    #[test]
+    fn corrector_adds_a_small_gain() {
+        let (mu2, lambda) = finished(&refined(1e-6, 1.0), 0.5, (0.0, 1.0)).unwrap();
+        assert_eq!((mu2, lambda), (1.0 + 0.5e-12, 0.5 - 1e-6));
+    }
+
+    /// ...unless the third-order term left out is above ε/8 (here 1e10 · 1e-18 / 6),
+    /// or the gain is above GAIN_TOL, or the curvature has the wrong sign.
+    #[test]
+    fn corrector_refuses_large_cubic_terms_and_gains() {
+        assert!(finished(&refined(1e-6, 1e10), 0.5, (0.0, 1.0)).is_none());
+        assert!(finished(&refined(1e-5, 1.0), 0.5, (0.0, 1.0)).is_none());
+        let flat = Refined {
+            gp: -1.0,
+            ..refined(1e-9, 1.0)
+        };
+        assert!(finished(&flat, 0.5, (0.0, 1.0)).is_none());
+    }
+}
