@@ -18,7 +18,18 @@ pub(super) fn correct(
     t: f64,
     iterations: u32,
 ) -> Result<Contact, ContactError> {
-    if let Some(v) = refiner.at(t) {
+    correct_checking::<false>(p, refiner, t, iterations)
+}
+
+/// [`correct`], checking `g` if `CHECK_G` ([`Refiner::at_checking`]).
+#[inline(always)]
+pub(super) fn correct_checking<const CHECK_G: bool>(
+    p: &Prepared,
+    refiner: &Refiner,
+    t: f64,
+    iterations: u32,
+) -> Result<Contact, ContactError> {
+    if let Some(v) = refiner.at_checking::<CHECK_G>(t) {
         if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
             if v.g_trusted {
                 return p.finish(mu2, polished, Stop::Converged, iterations + 1);
@@ -38,7 +49,7 @@ fn step_first(
     t: f64,
     iterations: u32,
 ) -> Result<Contact, ContactError> {
-    if let Some(v) = refiner.at(t).filter(|v| v.g_trusted) {
+    if let Some(v) = refiner.at_checking::<true>(t).filter(|v| v.g_trusted) {
         if let Some((mu2, polished)) = finished(&v, t, (0.0, 1.0)) {
             return p.finish(mu2, polished, Stop::Converged, iterations + 1);
         }
@@ -84,7 +95,7 @@ pub(super) fn correct_further(
     let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, [p.l1.det(), p.l2.det(), a, b]);
     let refiner = Refiner::new(&p, &parts, &rational);
     let evaluate = |lambda: f64| -> Result<Refined, ContactError> {
-        match refiner.at(lambda).filter(|v| v.g_trusted) {
+        match refiner.at_checking::<true>(lambda).filter(|v| v.g_trusted) {
             Some(v) => Ok(v),
             None => refined_ldl(lambda, &p.r, &p.q1, &p.q2),
         }

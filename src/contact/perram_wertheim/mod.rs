@@ -118,16 +118,35 @@ pub fn contact_function(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Contact, Con
     solve(r12, q1, q2, true)
 }
 
+/// How [`solve`] answers: the fast path, the accurate one, or the accurate one with
+/// the checks of `g` ([`Refiner::at_checking`]) for pairs whose coefficients may cancel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Fast,
+    Accurate,
+    Checked,
+}
+
 #[inline(always)]
 fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, ContactError> {
+    solve_in(
+        r12,
+        q1,
+        q2,
+        if accurate { Mode::Accurate } else { Mode::Fast },
+    )
+}
+
+#[inline(always)]
+fn solve_in(r12: &Vec3, q1: &Sym3, q2: &Sym3, mode: Mode) -> Result<Contact, ContactError> {
     if needs_no_rescaling(r12, q1, q2) && *r12 != [0.0; 3] {
         if let (Ok(l1), Ok(l2)) = (Ldl::factor(q1), Ldl::factor(q2)) {
             // Built here rather than returned in an `Option`, which costs a copy.
             let p = Prepared::unscaled(r12, q1, q2, l1, l2);
-            return solve_prepared(&p, accurate, (r12, q1, q2));
+            return solve_prepared(&p, mode, (r12, q1, q2));
         }
     }
-    solve_otherwise(r12, q1, q2, accurate)
+    solve_otherwise(r12, q1, q2, mode)
 }
 
 /// [`solve`] for input that needs validating in detail, rescaling, or is `r12 = 0`;
@@ -135,12 +154,7 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
 /// together go to [`robust::solve_robust`].
 #[cold]
 #[inline(never)]
-fn solve_otherwise(
-    r12: &Vec3,
-    q1: &Sym3,
-    q2: &Sym3,
-    accurate: bool,
-) -> Result<Contact, ContactError> {
+fn solve_otherwise(r12: &Vec3, q1: &Sym3, q2: &Sym3, mode: Mode) -> Result<Contact, ContactError> {
     let p = match Prepared::new(r12, q1, q2) {
         Ok(p) => p,
         Err(ContactError::NotPositiveDefinite { .. } | ContactError::Overflow { .. }) => {
@@ -156,7 +170,7 @@ fn solve_otherwise(
             iterations: 0,
         });
     }
-    solve_prepared(&p, accurate, (r12, q1, q2))
+    solve_prepared(&p, mode, (r12, q1, q2))
 }
 
 /// The common path for `p`, prepared from `input` (which the hand-overs take, so that
@@ -164,12 +178,12 @@ fn solve_otherwise(
 #[inline(always)]
 fn solve_prepared(
     p: &Prepared,
-    accurate: bool,
+    mode: Mode,
     input: (&Vec3, &Sym3, &Sym3),
 ) -> Result<Contact, ContactError> {
     let (parts, (a, b), t0) = pieces(p);
     let inside = (NEAR_END..=1.0 - NEAR_END).contains(&t0);
-    if !accurate {
+    if mode == Mode::Fast {
         // One branch for both hand-overs (a second cost the fast path 3 ns).
         if !(inside & well_conditioned(&sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b))) {
             return handed_over(input, inside);
@@ -178,8 +192,9 @@ fn solve_prepared(
         let (t, stop, iterations) = predict_with(&rational, t0, HALLEY_FINAL_GAIN, true)?;
         return p.finish(rational.f(t), t, stop, iterations);
     }
-    if !inside {
-        return handed_over(input, false);
+    let conditioned = well_conditioned(&sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b));
+    if !(inside & (conditioned | (mode == Mode::Checked))) {
+        return handed_over(input, inside);
     }
     let rational = Rational::from_coefficients(a, b);
     // Built before the predictor runs, so that its work fills the predictor's latency.
@@ -188,13 +203,17 @@ fn solve_prepared(
     if stop != Stop::Converged {
         return p.finish(rational.f(t), t, stop, iterations);
     }
-    correct(p, &refiner, t, iterations)
+    match mode {
+        Mode::Checked => correct_checking::<true>(p, &refiner, t, iterations),
+        _ => correct(p, &refiner, t, iterations),
+    }
 }
 
-/// The answer for a pair [`solve_prepared`] hands over: one whose maximiser for two
+/// The answer for a pair [`solve_prepared`] hands over. One whose maximiser for two
 /// spheres lies within [`NEAR_END`] of 0 or 1 (`inside` false) goes to
-/// [`robust::solve_robust`]; the fast path's pair whose `κ` is above
-/// [`FAST_MAX_CONDITION`] gets the accurate answer, bitwise [`contact_function`]'s.
+/// [`robust::solve_robust`]. One whose `κ` is above [`FAST_MAX_CONDITION`] gets the
+/// accurate answer with the checks of `g` (both methods: the fast one's is bitwise
+/// [`contact_function`]'s).
 #[cold]
 #[inline(never)]
 fn handed_over(
@@ -202,7 +221,7 @@ fn handed_over(
     inside: bool,
 ) -> Result<Contact, ContactError> {
     match inside {
-        true => solve(r12, q1, q2, true),
+        true => solve_in(r12, q1, q2, Mode::Checked),
         false => solve_robust(r12, q1, q2, 0),
     }
 }
@@ -324,7 +343,7 @@ pub use batch::{contact_functions, contact_functions_fast};
 pub use condition::{fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL};
 use condition::{sizes, well_conditioned};
 pub use corrector::CUBIC_TERM_TOL;
-use corrector::{correct, correct_further, finished};
+use corrector::{correct, correct_checking, correct_further, finished};
 pub use exact::SINGULAR_PIVOT;
 use robust::solve_robust;
 pub use robust::NEAR_END;

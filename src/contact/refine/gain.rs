@@ -14,10 +14,10 @@
 //!   which is `ε cond` times `sᵀu` when `s` lies along a thin axis, and `g` itself by
 //!   `4ε |(2λ−1)h|`.
 //!
-//! The adjugate start's values are used only if that moves μ² by at most
-//! [`GAIN_ROUNDING_TOL`] (checked as products, without division or square root);
-//! otherwise the corrector takes the LDLᵀ refinement ([`super::refined_ldl`]), which
-//! refines `s` twice and forms `g` in double-double ([`g_double_double`]).
+//! If `δg²/(2g′)` may exceed [`GAIN_ROUNDING_TOL`]` · f`, the corrector takes the LDLᵀ
+//! refinement ([`super::refined_ldl`]), which refines `s` twice and forms `g` in
+//! double-double ([`g_double_double`]). If only `δg|g|/g′` may, it evaluates `f` at the
+//! Newton point instead of adding the gain, where that term is gone.
 
 use super::*;
 
@@ -34,35 +34,35 @@ const SU_ROUNDING: f64 = 8.0;
 const G_ROUNDING: f64 = 4.0;
 
 impl<T: Arith> Terms<'_, T> {
-    /// Pairs `(lhs, rhs)`: the plain values (`plain`, with `bound` of
-    /// [`Terms::second_order_bound`]) give a good enough `g` where `lhs ≤ rhs` for all
-    /// (module docs). With `δg ≤ A + B`, `A² = 4p² η² h uᵀQ⁻¹u` (the start) and
-    /// `B = ε(8p |s|ᵀ|Q2−Q1||s| + 4|(2λ−1)h|)` (rounding), and `T` the budget
-    /// `GAIN_ROUNDING_TOL · f g′`: `A|g|`, `B|g|`, `A²` and `B²` each at most `T/4`,
-    /// the terms in `A²` multiplied through by `β num`.
+    /// Two pairs `(lhs, rhs)` for the plain values (`plain`, with `bound` of
+    /// [`Terms::second_order_bound`]): `g` is good enough to second order where the
+    /// first holds (`lhs ≤ rhs`), to first order where the second does (module docs).
+    /// With `δg ≤ A + B`, `A² = 4p² η² h uᵀQ⁻¹u` (the start) and
+    /// `B = ε(8p |s|ᵀ|Q2−Q1||s| + 4|(2λ−1)h|)` (rounding, with
+    /// `|s|ᵀ|Q2−Q1||s| ≤ (Σ|s_i|)² Σ|(Q2−Q1)_ij|`), `E = A² + B²` and the budget
+    /// `T = GAIN_ROUNDING_TOL · f g′`: `δg²/2 ≤ E ≤ T/2` and `δg|g| ≤ √(2E)|g| ≤ T/2`,
+    /// each multiplied through by `β num` (`A²` carries its inverse), so that neither
+    /// needs a division, a square root or a branch.
     #[inline(always)]
-    pub fn plain_g_checks(&self, plain: &(T, T, T), bound: T) -> [(T, T); 4] {
+    pub fn plain_g_checks(&self, plain: &(T, T, T), bound: T) -> [(T, T); 2] {
         let (f, h, su) = *plain;
         let one = T::constant(1.0);
         let uw = self.uw * self.inv * self.inv * self.inv;
         let a = self.t.times(2.0) - one;
         let g = a * h + self.p * su;
         let gp = (h + (one - self.t.times(2.0)) * su - self.p * uw).times(2.0);
-        let quarter = f * gp.times(0.25 * GAIN_ROUNDING_TOL);
+        let half = f * gp.times(0.5 * GAIN_ROUNDING_TOL);
+        let scale = self.beta * self.num.hi;
         // A² · β num.
         let a2 = (self.p * self.p * bound * h * uw).times(4.0);
-        let scale = self.beta * self.num.hi;
-        let ax = self.x.map(T::abs);
-        let aq = (*self.q12).map(T::abs);
-        let s_m_s = dot(&ax, &sym_mul(&aq, &ax)) * self.i2;
+        let xs = self.x[0].abs() + self.x[1].abs() + self.x[2].abs();
+        let s_m_s = xs * xs * self.q12_abs * self.i2;
         let b = (self.p * s_m_s).times(SU_ROUNDING * f64::EPSILON)
             + (a * h).abs().times(G_ROUNDING * f64::EPSILON);
-        let g = g.abs();
+        let e = a2 + b * b * scale;
         [
-            (a2 * g * g, quarter * quarter * scale),
-            (a2, quarter * scale),
-            (b * g, quarter),
-            (b * b, quarter),
+            (e, half * scale),
+            (e.times(2.0) * g * g, half * half * scale),
         ]
     }
 }

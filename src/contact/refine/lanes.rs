@@ -3,19 +3,17 @@
 use super::*;
 use crate::contact::lanes::{Mask, F, LANES};
 
-/// [`Refiner::at`] for eight pairs at once, lane `k` at `lambda[k]`: bitwise the same
-/// values, with both of its ways computed and the one that applies kept. The mask is
-/// clear where `at` gives `None`.
+/// [`Refiner::at`] for eight pairs at once, lane `k` at `lambda[k]` and checking `g`
+/// where `check_g` is set: bitwise the same values, with both of its ways computed and
+/// the one that applies kept. The mask is clear where `at` gives `None`.
 #[inline(always)]
-pub(crate) fn at_lanes(pair: &Pair<F>, lambda: F) -> ([Refined; LANES], Mask) {
+pub(crate) fn at_lanes(pair: &Pair<F>, lambda: F, check_g: Mask) -> ([Refined; LANES], Mask) {
     let k = Terms::new(pair, lambda);
     let (bound, negligible) = k.second_order_bound();
     let plain = k.plain();
-    let [first_a, second_a, first_b, second_b] = k
-        .plain_g_checks(&plain, bound)
-        .map(|(lhs, rhs)| lhs.le(rhs));
-    let g_ok = second_a.and(second_b);
-    let trusted = first_a.and(first_b);
+    let [(e, second), (e_g2, first)] = k.plain_g_checks(&plain, bound);
+    let unchecked = check_g.not();
+    let (g_ok, trusted) = (unchecked.or(e.le(second)), unchecked.or(e_g2.le(first)));
     let negligible = bound.le(negligible);
     let (e0, second) = k.second_order();
     let accepted = second.abs().le(REFINEMENT_TOL * k.num.hi);

@@ -35,9 +35,8 @@ fn eta2(refiner: &Refiner, lambda: f64) -> f64 {
 /// At the reference maximiser (50 digits, rounded to a double, so f is within
 /// ~1e-32 of μ² there), both refinements give μ² to a few ulps: 4 ε allows the
 /// last few roundings of the double-double sums. The adjugate start is accepted on
-/// every typical row; on elongated extreme rows it may decline because `g` is not
-/// good enough for a gain (module `gain`; 40 of 1960 rows here), never with a wrong
-/// f.
+/// every typical row; on some extreme rows (nearly identical needles) it declines, and
+/// the LDLᵀ refinement answers, never with a wrong f.
 #[test]
 fn refined_f_at_the_reference_maximiser_is_the_reference_mu2() {
     for name in ["contact_typical.csv", "contact_extreme.csv"] {

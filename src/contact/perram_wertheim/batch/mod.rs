@@ -124,11 +124,11 @@ fn eight<const ACCURATE: bool>(
     let inside = t0
         .ge(F::splat(NEAR_END))
         .and(t0.le(F::splat(1.0 - NEAR_END)));
-    let conditioned = match ACCURATE {
-        true => Mask::splat(true),
-        false => well_conditioned_lanes(&sizes(&r, &q1, &q2, &parts, &ca, &cb)),
+    let conditioned = well_conditioned_lanes(&sizes(&r, &q1, &q2, &parts, &ca, &cb));
+    let candidates = match ACCURATE {
+        true => plain.and(factored).and(inside),
+        false => plain.and(factored).and(inside).and(conditioned),
     };
-    let candidates = plain.and(factored).and(inside).and(conditioned);
     let (t, iterations, predicted) = predict_lanes(&poly, t0, switch, candidates, !ACCURATE);
     let common = candidates.and(predicted);
     let scalar = |k: usize| {
@@ -160,7 +160,7 @@ fn eight<const ACCURATE: bool>(
         parts: &parts,
         start: &start,
     };
-    let (refined, accepted) = at_lanes(&pair, t);
+    let (refined, accepted) = at_lanes(&pair, t, conditioned.not());
     let t = t.to_array();
     std::array::from_fn(|k| {
         if !common.get(k) {
