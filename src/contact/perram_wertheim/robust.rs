@@ -44,16 +44,19 @@ use crate::contact::{Contact, ContactError, Stop, Sym3, Vec3};
 
 /// The common path hands a pair over when the maximiser for two spheres,
 /// `λ₀ = √b / (√a + √b)`, lies within `NEAR_END = 2^-24 ≈ 6e-8` of 0 or 1: sizes in a
-/// ratio above about 1e7. λ* is then near an end too (`1 − λ₀ ≤ √ν`, `ν` the largest
-/// eigenvalue of `Q1⁻¹Q2`), which the common path resolves only in `1 − λ` with an
-/// absolute precision of ε.
+/// ratio above about 1e7. λ* is then near an end too, where the poles of `φ′` nearly
+/// cancel, the predictor's scaled products leave their range for larger ratios, and
+/// the coefficients of `f` span the cube of the ratio; this path works in the distance
+/// to the end itself. The `huge_ratio` references (ratios 1e6 to 1e150) cover both
+/// sides of the threshold.
 pub const NEAR_END: f64 = 1.0 / (1u64 << 24) as f64;
 
 /// The search stops where the gain its quadratic model predicts in `u = ln y` is at
 /// most `FINAL_GAIN = ε/8` relative (after taking that last step), or the step is at
-/// the rounding of `u`. Tighter than the predictor's [`GAIN_TOL`] on purpose: the model
-/// in `u` holds over steps of order 1 only, so a gain of `GAIN_TOL` may leave ~1e-14
-/// (measured on the size ratios up to 1e150), and this path is cold.
+/// the rounding of `u`. Tighter than the predictor's [`GAIN_TOL`](super::GAIN_TOL) on
+/// purpose: the model in `u` holds over steps of order 1 only, so a gain of
+/// `GAIN_TOL` may leave ~1e-14 (measured on the size ratios up to 1e150), and this
+/// path is cold.
 const FINAL_GAIN: f64 = f64::EPSILON / 8.0;
 
 /// Smallest `y = λ̂/(1−λ̂)` the search considers: below it `F` differs from its limit
