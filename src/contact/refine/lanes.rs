@@ -7,7 +7,11 @@ use crate::contact::lanes::{Mask, F, LANES};
 /// where `check_g` is set: bitwise the same values, with both of its ways computed and
 /// the one that applies kept. The mask is clear where `at` gives `None`.
 #[inline(always)]
-pub(crate) fn at_lanes(pair: &Pair<F>, lambda: F, check_g: Mask) -> ([Refined; LANES], Mask) {
+pub(crate) fn at_lanes(
+    pair: &RefinedPair<F>,
+    lambda: F,
+    check_g: Mask,
+) -> ([Refined; LANES], Mask) {
     let k = Terms::new(pair, lambda);
     let (bound, negligible) = k.second_order_bound();
     let plain = k.plain();

@@ -159,7 +159,7 @@ impl<'a> Refiner<'a> {
     /// common path cost 17 ns.
     #[inline(always)]
     pub fn at_checking<const CHECK_G: bool>(&self, lambda: f64) -> Option<Refined> {
-        let pair = Pair {
+        let pair = RefinedPair {
             r: &self.p.r,
             q1: &self.p.q1,
             q2: &self.p.q2,
@@ -199,7 +199,7 @@ impl<'a> Refiner<'a> {
 
 /// A pair as the refinement reads it: what a [`Refiner`] refers to, or eight of them
 /// in lanes.
-pub(crate) struct Pair<'a, T> {
+pub(crate) struct RefinedPair<'a, T> {
     pub r: &'a [T; 3],
     pub q1: &'a [T; 6],
     pub q2: &'a [T; 6],
@@ -234,7 +234,7 @@ impl<'a, T: Arith> Terms<'a, T> {
     /// [`Rational::det_unit`]), so that nothing waits for a division:
     /// `β² rᵀQ⁻¹r = β rᵀx + xᵀρ + ρᵀQ⁻¹ρ` with `ρ = βr − Q x`.
     #[inline(always)]
-    pub fn new(pair: &Pair<'a, T>, lambda: T) -> Self {
+    pub fn new(pair: &RefinedPair<'a, T>, lambda: T) -> Self {
         let one = T::constant(1.0);
         let (t, s) = (lambda, one - lambda);
         let (r, start) = (pair.r, pair.start);

@@ -12,7 +12,7 @@ use super::*;
 use crate::contact::bernstein::{coefficients, largest, scale_of, Poly, MIN_SCALED_PRODUCT};
 use crate::contact::lanes::{gather, Mask, F, IN_REGISTERS, LANES};
 use crate::contact::ldl::pivot_floor;
-use crate::contact::refine::{at_lanes, Pair, Start};
+use crate::contact::refine::{at_lanes, RefinedPair, Start};
 use crate::contact::scale::pow2;
 use crate::contact::scale::{finish, ldexp};
 
@@ -152,7 +152,7 @@ fn eight<const ACCURATE: bool>(
     }
     let inv_unit = F::from_array(b_exp.map(|e| 1.0 / pow2(e)));
     let start = Start::new(&l1, &l2, &r, &q1, &q2, &parts.mixed, inv_unit);
-    let pair = Pair {
+    let pair = RefinedPair {
         r: &r,
         q1: &q1,
         q2: &q2,
