@@ -8,6 +8,7 @@
 
 mod density;
 mod distribution;
+mod sample;
 mod special;
 mod stats;
 mod von_mises;

@@ -2,9 +2,7 @@
 //! ratio), truncated to cutoffs and sampled by rejection.
 
 use super::special::{normal_mass, normal_pdf};
-use super::{MAX_DRAWS, MIN_ACCEPTED_MASS};
-use rand::Rng;
-use rand_distr::StandardNormal;
+use super::MIN_ACCEPTED_MASS;
 
 /// A distribution of a positive quantity, truncated to `[min, max]`.
 ///
@@ -239,33 +237,6 @@ impl Distribution {
         (self.moment(2) - m * m).max(0.0).sqrt()
     }
 
-    /// Draws one value: untruncated draws are rejected until one falls inside the
-    /// cutoffs, at most [`MAX_DRAWS`] times. `None` if none did (probability below
-    /// e⁻⁵⁰ for a validated distribution).
-    pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> Option<f64> {
-        match *self {
-            Self::Constant { value } => Some(value),
-            Self::Uniform { min, max } => Some(min + (max - min) * rng.random::<f64>()),
-            Self::Normal {
-                mean,
-                std,
-                min,
-                max,
-            } => (0..MAX_DRAWS)
-                .map(|_| mean + std * rng.sample::<f64, _>(StandardNormal))
-                .find(|x| (min..=max).contains(x)),
-            Self::LogNormal {
-                sigma,
-                scale,
-                loc,
-                min,
-                max,
-            } => (0..MAX_DRAWS)
-                .map(|_| loc + scale * (sigma * rng.sample::<f64, _>(StandardNormal)).exp())
-                .find(|x| (min..=max).contains(x)),
-        }
-    }
-
     /// Checks that the parameters describe a bounded law of positive values that keeps
     /// at least [`MIN_ACCEPTED_MASS`] inside its cutoffs, naming the first parameter
     /// that does not.
@@ -366,110 +337,4 @@ pub(crate) fn sample_laws() -> [Distribution; 5] {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::laws::special::simpson;
-    use rand::SeedableRng;
-    use rand_chacha::ChaCha8Rng;
-
-    const KANAPY_SIZE: Distribution = Distribution::LogNormal {
-        sigma: 0.8,
-        scale: 14.0,
-        loc: 0.0,
-        min: 6.0,
-        max: 16.0,
-    };
-
-    /// The density of the truncated law, written out independently of the code under
-    /// test.
-    fn pdf(d: &Distribution, x: f64) -> f64 {
-        let p = d.accepted_mass();
-        match *d {
-            Distribution::Uniform { min, max } => 1.0 / (max - min),
-            Distribution::Normal { mean, std, .. } => normal_pdf((x - mean) / std) / (std * p),
-            Distribution::LogNormal {
-                sigma, scale, loc, ..
-            } => normal_pdf(((x - loc) / scale).ln() / sigma) / (sigma * (x - loc) * p),
-            Distribution::Constant { .. } => unreachable!(),
-        }
-    }
-
-    /// Moments from the closed forms against Simpson quadrature of `xᵏ f(x)`. Both rest
-    /// on the erfc fit (fractional error 1.2e-7) through the accepted mass, and Simpson
-    /// on 4000 intervals is exact to ~1e-12 for these smooth densities, so 1e-6 relative
-    /// is the tolerance.
-    #[test]
-    fn closed_form_moments_agree_with_quadrature_of_the_density() {
-        for d in sample_laws() {
-            let (lo, hi) = d.support();
-            let total = simpson(|x| pdf(&d, x), lo, hi, 4000);
-            assert!(
-                (total - 1.0).abs() < 1e-6,
-                "{d:?}: density integrates to {total}"
-            );
-            for k in 1..=3 {
-                let want = simpson(|x| x.powi(k as i32) * pdf(&d, x), lo, hi, 4000);
-                let got = d.moment(k);
-                assert!(
-                    ((got - want) / want).abs() < 1e-6,
-                    "{d:?} k={k}: {got} vs {want}"
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn truncated_cdf_runs_from_zero_at_min_to_one_at_max() {
-        for d in [
-            KANAPY_SIZE,
-            Distribution::Normal {
-                mean: 1.0,
-                std: 1.0,
-                min: 0.5,
-                max: 3.0,
-            },
-        ] {
-            let (lo, hi) = d.support();
-            assert!(d.cdf(lo).abs() < 1e-12);
-            assert_eq!(d.cdf(hi), 1.0);
-            assert!(d.cdf(0.5 * (lo + hi)) > 0.0 && d.cdf(0.5 * (lo + hi)) < 1.0);
-        }
-    }
-
-    #[test]
-    fn samples_stay_inside_the_cutoffs() {
-        let mut rng = ChaCha8Rng::seed_from_u64(7);
-        for _ in 0..2000 {
-            let x = KANAPY_SIZE.sample(&mut rng).unwrap();
-            assert!((6.0..=16.0).contains(&x), "{x}");
-        }
-    }
-
-    #[test]
-    fn check_names_the_offending_parameter() {
-        let bad = |d: Distribution| d.check().unwrap_err().param;
-        assert_eq!(
-            bad(Distribution::LogNormal {
-                sigma: -0.8,
-                scale: 14.0,
-                loc: 0.0,
-                min: 6.0,
-                max: 16.0
-            }),
-            "sigma"
-        );
-        assert_eq!(bad(Distribution::Uniform { min: 5.0, max: 2.0 }), "max");
-        assert_eq!(bad(Distribution::Constant { value: f64::NAN }), "value");
-        // Cutoffs 9 standard deviations out keep ~1e-19 of the mass.
-        assert_eq!(
-            bad(Distribution::Normal {
-                mean: 0.0,
-                std: 1.0,
-                min: 9.0,
-                max: 10.0
-            }),
-            "min"
-        );
-        assert!(KANAPY_SIZE.check().is_ok());
-    }
-}
+mod tests;
