@@ -1,0 +1,200 @@
+//! The narrow phase over numpy arrays: `r12` (n, 3), `q1` and `q2` (n, 6), C-contiguous
+//! float64 (the Python wrapper in `grainpack/__init__.py` converts and checks shapes).
+//!
+//! Every function computes all rows with the GIL released, then reports the first row
+//! that has no answer as an exception naming it (see `row_error`).
+
+use grainpack::contact::{
+    contact_functions, contact_geometry, overlaps, Contact, ContactError, Stop, Sym3, Vec3,
+};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyArithmeticError, PyValueError};
+use pyo3::prelude::*;
+
+/// Pairs handed to the batch code at a time: small enough that the copies stay in
+/// cache, large enough that the call overhead does not show.
+const CHUNK: usize = 4096;
+
+/// The pairs of the three arrays, row by row.
+struct Pairs<'a> {
+    r12: &'a [f64],
+    q1: &'a [f64],
+    q2: &'a [f64],
+}
+
+impl Pairs<'_> {
+    fn len(&self) -> usize {
+        self.r12.len() / 3
+    }
+
+    fn get(&self, i: usize) -> (Vec3, Sym3, Sym3) {
+        let r: Vec3 = self.r12[3 * i..3 * i + 3].try_into().expect("3 columns");
+        let q1: Sym3 = self.q1[6 * i..6 * i + 6].try_into().expect("6 columns");
+        let q2: Sym3 = self.q2[6 * i..6 * i + 6].try_into().expect("6 columns");
+        (r, q1, q2)
+    }
+}
+
+/// Checks the shapes (the wrapper already did; this keeps the native functions safe
+/// when called directly) and borrows the rows.
+fn pairs<'a>(
+    r12: &'a PyReadonlyArray2<'_, f64>,
+    q1: &'a PyReadonlyArray2<'_, f64>,
+    q2: &'a PyReadonlyArray2<'_, f64>,
+) -> PyResult<Pairs<'a>> {
+    let n = r12.shape()[0];
+    for (name, a, cols) in [("r12", r12, 3), ("q1", q1, 6), ("q2", q2, 6)] {
+        if a.shape() != [n, cols] {
+            return Err(PyValueError::new_err(format!(
+                "{name} has shape {:?}, expected ({n}, {cols})",
+                a.shape()
+            )));
+        }
+    }
+    let slice = |name: &str, a: &'a PyReadonlyArray2<'_, f64>| {
+        a.as_slice()
+            .map_err(|_| PyValueError::new_err(format!("{name} is not C-contiguous")))
+    };
+    Ok(Pairs {
+        r12: slice("r12", r12)?,
+        q1: slice("q1", q1)?,
+        q2: slice("q2", q2)?,
+    })
+}
+
+/// The first row without an answer, as the exception to raise: `ValueError` for
+/// invalid input (the library's message, which names `r12`, `q1` or `q2` and the
+/// value), `ArithmeticError` when the solver ran out of iterations or overflowed.
+fn row_error(row: usize, error: &ContactError) -> PyErr {
+    let message = format!("row {row}: {error}");
+    match error {
+        ContactError::NotConverged { .. } | ContactError::Overflow { .. } => {
+            PyArithmeticError::new_err(message)
+        }
+        _ => PyValueError::new_err(message),
+    }
+}
+
+/// μ² and λ of every row with the batch (eight-lane) code, or the first bad row.
+fn contact_rows(p: &Pairs) -> Result<(Vec<f64>, Vec<f64>), (usize, ContactError)> {
+    let n = p.len();
+    let (mut mu2, mut lambda) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    let mut chunk = Vec::with_capacity(CHUNK.min(n));
+    for start in (0..n).step_by(CHUNK) {
+        chunk.clear();
+        chunk.extend((start..n.min(start + CHUNK)).map(|i| p.get(i)));
+        for (k, result) in contact_functions(&chunk).into_iter().enumerate() {
+            let c: Contact = result.map_err(|e| (start + k, e))?;
+            if c.stop == Stop::MaxIterations {
+                let iterations = c.iterations;
+                return Err((start + k, ContactError::NotConverged { iterations }));
+            }
+            mu2.push(c.mu2);
+            lambda.push(c.lambda);
+        }
+    }
+    Ok((mu2, lambda))
+}
+
+/// Two float64 columns.
+type Column2<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// `(mu2, lambda)` of every row: the accurate contact function, eight rows at a time.
+#[pyfunction]
+pub fn contact_function_rows<'py>(
+    py: Python<'py>,
+    r12: PyReadonlyArray2<'py, f64>,
+    q1: PyReadonlyArray2<'py, f64>,
+    q2: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Column2<'py>> {
+    let p = pairs(&r12, &q1, &q2)?;
+    let (mu2, lambda) = py
+        .detach(|| contact_rows(&p))
+        .map_err(|(row, e)| row_error(row, &e))?;
+    Ok((mu2.into_pyarray(py), lambda.into_pyarray(py)))
+}
+
+/// Whether each row's ellipsoids overlap (the certified yes/no test).
+#[pyfunction]
+pub fn overlaps_rows<'py>(
+    py: Python<'py>,
+    r12: PyReadonlyArray2<'py, f64>,
+    q1: PyReadonlyArray2<'py, f64>,
+    q2: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<bool>>> {
+    let p = pairs(&r12, &q1, &q2)?;
+    let answers = py
+        .detach(|| {
+            (0..p.len())
+                .map(|i| {
+                    let (r, a, b) = p.get(i);
+                    overlaps(&r, &a, &b).map_err(|e| (i, e))
+                })
+                .collect::<Result<Vec<bool>, _>>()
+        })
+        .map_err(|(row, e)| row_error(row, &e))?;
+    Ok(answers.into_pyarray(py))
+}
+
+/// Contact geometry arrays of every row.
+pub struct GeometryRows {
+    mu2: Vec<f64>,
+    lambda: Vec<f64>,
+    point: Vec<f64>,
+    normal: Vec<f64>,
+    gap: Vec<f64>,
+}
+
+type GeometryArrays<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+);
+
+/// `(mu2, lambda, point (n, 3), normal (n, 3), gap)` of every row.
+#[pyfunction]
+pub fn contact_geometry_rows<'py>(
+    py: Python<'py>,
+    r12: PyReadonlyArray2<'py, f64>,
+    q1: PyReadonlyArray2<'py, f64>,
+    q2: PyReadonlyArray2<'py, f64>,
+) -> PyResult<GeometryArrays<'py>> {
+    let p = pairs(&r12, &q1, &q2)?;
+    let n = p.len();
+    let rows = py
+        .detach(|| {
+            let mut out = GeometryRows {
+                mu2: Vec::with_capacity(n),
+                lambda: Vec::with_capacity(n),
+                point: Vec::with_capacity(3 * n),
+                normal: Vec::with_capacity(3 * n),
+                gap: Vec::with_capacity(n),
+            };
+            for i in 0..n {
+                let (r, a, b) = p.get(i);
+                let g = contact_geometry(&r, &a, &b).map_err(|e| (i, e))?;
+                out.mu2.push(g.mu2);
+                out.lambda.push(g.lambda);
+                out.point.extend(g.point);
+                out.normal.extend(g.normal);
+                out.gap.push(g.gap);
+            }
+            Ok(out)
+        })
+        .map_err(|(row, e): (usize, ContactError)| row_error(row, &e))?;
+    let matrix = |v: Vec<f64>| {
+        Array2::from_shape_vec((n, 3), v)
+            .expect("3 values per row")
+            .into_pyarray(py)
+    };
+    Ok((
+        rows.mu2.into_pyarray(py),
+        rows.lambda.into_pyarray(py),
+        matrix(rows.point),
+        matrix(rows.normal),
+        rows.gap.into_pyarray(py),
+    ))
+}

@@ -1,0 +1,196 @@
+//! `Packing`: a run's result, with its grain table as numpy columns, its summary, and
+//! the CLI's outputs on request.
+
+use crate::errors::chain;
+use grainpack::io::report::{write_grains_csv, write_outputs, Summary};
+use grainpack::io::voxel::voxelise;
+use grainpack::run::RunResult;
+use grainpack::scene::{proportional_cells, RveFill, Scene};
+use numpy::{IntoPyArray, PyArray1};
+use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+/// Material and phase of each voxel (flat, x fastest), and the cells along x, y, z.
+type Voxels<'py> = (
+    Bound<'py, PyArray1<u32>>,
+    Bound<'py, PyArray1<u32>>,
+    [usize; 3],
+);
+
+/// The result of `grainpack.pack`: the packed grains and the run's figures.
+#[pyclass(name = "_Packing", module = "grainpack._grainpack", frozen)]
+pub struct PyPacking {
+    scene: Scene,
+    result: RunResult,
+    /// `summary.json` as last written by `write`, so that `summary` then matches it.
+    written_summary: Mutex<Option<String>>,
+}
+
+impl PyPacking {
+    pub fn new(scene: Scene, result: RunResult) -> Self {
+        Self {
+            scene,
+            result,
+            written_summary: Mutex::new(None),
+        }
+    }
+
+    fn summary_json(&self) -> String {
+        if let Some(written) = &*self.written_summary.lock().expect("never poisoned") {
+            return written.clone();
+        }
+        let summary = Summary::new(&self.scene, &self.result, None, 0.0);
+        serde_json::to_string(&summary).expect("a summary serializes")
+    }
+}
+
+/// One column of the grain table: integers where every value is one, else floats,
+/// else text.
+fn column<'py>(py: Python<'py>, values: &[&str]) -> Bound<'py, PyAny> {
+    if let Ok(ints) = values
+        .iter()
+        .map(|v| v.parse::<i64>())
+        .collect::<Result<Vec<_>, _>>()
+    {
+        return ints.into_pyarray(py).into_any();
+    }
+    if let Ok(floats) = values
+        .iter()
+        .map(|v| v.parse::<f64>())
+        .collect::<Result<Vec<_>, _>>()
+    {
+        return floats.into_pyarray(py).into_any();
+    }
+    let strings: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+    strings
+        .into_pyobject(py)
+        .map(|l| l.into_any())
+        .expect("a list of strings converts")
+}
+
+#[pymethods]
+impl PyPacking {
+    /// The grain table, column by column, as `grains.csv` holds it: a dict from column
+    /// name to a numpy array (int64 for integer columns, float64 otherwise), in the
+    /// file's column order. Built from the same writer, so every column the CLI writes
+    /// is here, with the same doubles.
+    fn _grain_table<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let mut text = Vec::new();
+        write_grains_csv(&mut text, &self.result.packing.grains)
+            .map_err(|e| PyOSError::new_err(e.to_string()))?;
+        let mut reader = csv::Reader::from_reader(text.as_slice());
+        let header: Vec<String> = reader
+            .headers()
+            .map_err(|e| PyOSError::new_err(e.to_string()))?
+            .iter()
+            .map(str::to_owned)
+            .collect();
+        let records = reader
+            .records()
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| PyOSError::new_err(e.to_string()))?;
+        let table = PyDict::new(py);
+        for (k, name) in header.iter().enumerate() {
+            let values: Vec<&str> = records.iter().map(|r| &r[k]).collect();
+            table.set_item(name, column(py, &values))?;
+        }
+        Ok(table)
+    }
+
+    /// The run's summary as JSON text (`summary.json`'s content).
+    fn _summary_json(&self) -> String {
+        self.summary_json()
+    }
+
+    /// Writes what `pack SCENE.toml --seed SEED --out DIR` writes, as the scene's
+    /// `[output]` asks, into `dir`; returns the paths written, in order.
+    fn _write(&self, py: Python<'_>, dir: PathBuf) -> PyResult<Vec<PathBuf>> {
+        let mut scene = self.scene.clone();
+        scene.output.dir = dir;
+        let result = &self.result;
+        let written = py
+            .detach(|| write_outputs(&scene, result))
+            .map_err(|e| PyOSError::new_err(chain(&e)))?;
+        if scene.output.summary_json {
+            let summary = Summary::new(&scene, result, written.rve.as_ref(), written.seconds);
+            let json = serde_json::to_string(&summary).expect("a summary serializes");
+            *self.written_summary.lock().expect("never poisoned") = Some(json);
+        }
+        Ok(written.files)
+    }
+
+    /// The voxel grid: `(material, phase, cells)`, both flat in x-fastest order.
+    /// `cells` is an int (along the longest edge, the others proportional, as
+    /// `rve_resolution = N`) or three counts; `fill` is `"grains"` or `"matrix"`.
+    fn _voxelise<'py>(
+        &self,
+        py: Python<'py>,
+        cells: Vec<usize>,
+        fill: &str,
+    ) -> PyResult<Voxels<'py>> {
+        let fill = match fill {
+            "grains" => RveFill::Grains,
+            "matrix" => RveFill::Matrix,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "fill = {other:?}: must be \"grains\" or \"matrix\""
+                )))
+            }
+        };
+        let size = self.scene.domain.size;
+        let cells = match cells.as_slice() {
+            [n] => proportional_cells(*n, size),
+            [x, y, z] => [*x, *y, *z],
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "resolution = {other:?}: must be one int or three"
+                )))
+            }
+        };
+        let (grains, domain, phases) = (
+            &self.result.packing.grains,
+            &self.scene.domain,
+            self.scene.phases.len(),
+        );
+        let grid = py
+            .detach(|| voxelise(grains, domain, cells, fill, phases))
+            .map_err(|e| PyValueError::new_err(chain(&e)))?;
+        Ok((
+            grid.material.into_pyarray(py),
+            grid.phase.into_pyarray(py),
+            grid.cells,
+        ))
+    }
+
+    /// Box edges `(Lx, Ly, Lz)`.
+    #[getter]
+    fn box_size(&self) -> (f64, f64, f64) {
+        let [x, y, z] = self.scene.domain.size;
+        (x, y, z)
+    }
+
+    /// The seed used.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.result.seed
+    }
+
+    /// Why the loop stopped: `target_reached`, `jammed`, `step_limit`.
+    #[getter]
+    fn stop_reason(&self) -> &'static str {
+        self.result.packing.stop.name()
+    }
+
+    /// The scene's phase names (a grain's `phase` indexes them).
+    #[getter]
+    fn phase_names(&self) -> Vec<String> {
+        self.scene.phases.iter().map(|p| p.name.clone()).collect()
+    }
+
+    fn __len__(&self) -> usize {
+        self.result.packing.grains.len()
+    }
+}

@@ -1,0 +1,163 @@
+//! `Scene`: a validated scene, read from TOML (a file or text) or from a dict, with the
+//! CLI's validation and its messages.
+
+use crate::errors::{chain, SceneError};
+use grainpack::io::scene::SceneError as LibSceneError;
+use grainpack::scene::{Boundary, GrainCount, Scene};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use std::path::PathBuf;
+
+/// The name scenes given as dicts have in error messages (as a file name would).
+const DICT_NAME: &str = "<dict>";
+
+/// The name scenes given as TOML text have in error messages.
+const TEXT_NAME: &str = "<string>";
+
+/// A scene: the box, the phases and their laws, the packing parameters and the outputs.
+///
+/// Made by `Scene.from_toml` or `Scene.from_dict`, validated as `pack SCENE.toml`
+/// validates a file; every key is documented in docs/config.md. Immutable.
+#[pyclass(name = "Scene", module = "grainpack", frozen)]
+pub struct PyScene {
+    pub inner: Scene,
+}
+
+/// The Python exception for a scene error: the CLI's message, with `file`, `line`,
+/// `column`, `key` and `value` attributes (None where the error has none: a file that
+/// cannot be read).
+pub fn scene_error(py: Python<'_>, error: &LibSceneError) -> PyErr {
+    let err = SceneError::new_err(chain(error));
+    let (file, line, column, key, value) = match error {
+        LibSceneError::Syntax {
+            file, line, column, ..
+        } => (Some(file.clone()), Some(*line), Some(*column), None, None),
+        LibSceneError::Shape {
+            file,
+            key,
+            line,
+            column,
+            value,
+            ..
+        }
+        | LibSceneError::Value {
+            file,
+            key,
+            line,
+            column,
+            value,
+            ..
+        } => (
+            Some(file.clone()),
+            Some(*line),
+            Some(*column),
+            Some(key.clone()),
+            Some(value.clone()),
+        ),
+        LibSceneError::Read { path, .. } => {
+            (Some(path.display().to_string()), None, None, None, None)
+        }
+        _ => (None, None, None, None, None),
+    };
+    let instance = err.value(py);
+    // Setting attributes on a fresh exception instance does not fail.
+    let _ = instance.setattr("file", file);
+    let _ = instance.setattr("line", line);
+    let _ = instance.setattr("column", column);
+    let _ = instance.setattr("key", key);
+    let _ = instance.setattr("value", value);
+    err
+}
+
+#[pymethods]
+impl PyScene {
+    /// Reads a scene file (a path) and validates it; errors name the file.
+    #[staticmethod]
+    fn _from_path(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let inner = py
+            .detach(|| Scene::from_path(&path))
+            .map_err(|e| scene_error(py, &e))?;
+        Ok(Self { inner })
+    }
+
+    /// Validates a scene given as TOML text; errors name it `name` (default
+    /// `<string>`).
+    #[staticmethod]
+    #[pyo3(signature = (text, name=None))]
+    fn _from_text(py: Python<'_>, text: &str, name: Option<&str>) -> PyResult<Self> {
+        let inner =
+            Scene::from_str(text, name.unwrap_or(TEXT_NAME)).map_err(|e| scene_error(py, &e))?;
+        Ok(Self { inner })
+    }
+
+    /// Validates a scene given as JSON text (the wrapper's `json.dumps` of a dict):
+    /// turned into TOML and read as a file named `<dict>` would be.
+    #[staticmethod]
+    fn _from_json(py: Python<'_>, json: &str) -> PyResult<Self> {
+        let value: serde_json::Value = serde_json::from_str(json)
+            .map_err(|e| PyValueError::new_err(format!("the scene is not a plain dict: {e}")))?;
+        if !value.is_object() {
+            return Err(PyValueError::new_err("a scene must be a dict"));
+        }
+        let text = toml::to_string(&value).map_err(|e| {
+            PyValueError::new_err(format!("the scene cannot be written as TOML: {e}"))
+        })?;
+        let inner = Scene::from_str(&text, DICT_NAME).map_err(|e| scene_error(py, &e))?;
+        Ok(Self { inner })
+    }
+
+    /// Seed of the random generator (`seed`).
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.inner.seed
+    }
+
+    /// Box edges `(Lx, Ly, Lz)`.
+    #[getter]
+    fn box_size(&self) -> (f64, f64, f64) {
+        let [x, y, z] = self.inner.domain.size;
+        (x, y, z)
+    }
+
+    /// `"periodic"` or `"reflecting"`.
+    #[getter]
+    fn boundary(&self) -> &'static str {
+        match self.inner.domain.boundary {
+            Boundary::Periodic => "periodic",
+            Boundary::Reflecting => "reflecting",
+        }
+    }
+
+    /// Phase names, in file order (a grain's `phase` is its index here).
+    #[getter]
+    fn phases(&self) -> Vec<String> {
+        self.inner.phases.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// The expected number of grains (exact when the scene gives `grains = N`).
+    #[getter]
+    fn expected_count(&self) -> f64 {
+        self.inner.expected_count()
+    }
+
+    /// The output directory of the scene (`output.dir`).
+    #[getter]
+    fn output_dir(&self) -> PathBuf {
+        self.inner.output.dir.clone()
+    }
+
+    fn __repr__(&self) -> String {
+        let s = &self.inner;
+        let count = match s.count {
+            GrainCount::Exactly(n) => format!("grains={n}"),
+            GrainCount::Fraction(f) => format!("target_fraction={f}"),
+        };
+        let [x, y, z] = s.domain.size;
+        format!(
+            "Scene({count}, box=({x}, {y}, {z}), boundary={:?}, phases={:?}, seed={})",
+            self.boundary(),
+            self.phases(),
+            s.seed
+        )
+    }
+}
