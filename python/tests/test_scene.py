@@ -1,0 +1,121 @@
+"""Scenes from TOML and dicts: the CLI's validation, its messages, located errors."""
+
+from __future__ import annotations
+
+import copy
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import grainpack as gp
+from conftest import EXAMPLE, SMALL_SCENE
+
+TOML = """seed = 5
+grains = 60
+
+[box]
+size = [30.0, 30.0, 30.0]
+boundary = "periodic"
+
+[[phase]]
+name = "matrix"
+share = 1.0
+size = { distribution = "lognormal", sigma = 0.3, scale = 6.0, min = 4.0, max = 9.0 }
+aspect_ratio = { distribution = "uniform", min = 1.0, max = 2.0 }
+orientation = { kind = "random" }
+"""
+
+# (name, bad text, line, key path): as tests/cli_pack.rs's bad scenes.
+BAD = [
+    ("syntax", TOML.replace("grains = 60", "grains = = 60"), 2, None),
+    ("unknown_key", TOML.replace('boundary = "periodic"', 'boundery = "periodic"'), 6, "box.boundery"),
+    ("negative_size", TOML.replace("[30.0, 30.0, 30.0]", "[30.0, -30.0, 30.0]"), 5, "box.size"),
+    ("reversed_cutoffs", TOML.replace("min = 4.0, max = 9.0", "min = 9.0, max = 4.0"), 11, "phase[0].size.max"),
+    ("fraction_0_9", TOML.replace("grains = 60", "target_fraction = 0.9"), 2, "target_fraction"),
+]
+
+
+def test_the_example_reads_from_a_path_a_str_path_and_text():
+    by_path = gp.Scene.from_toml(EXAMPLE)
+    by_str = gp.Scene.from_toml(str(EXAMPLE))
+    by_text = gp.Scene.from_toml(EXAMPLE.read_text())
+    for s in (by_path, by_str, by_text):
+        assert s.seed == 1 and s.phases == ["matrix", "needles"]
+        assert s.box_size == (65.0, 65.0, 65.0) and s.boundary == "periodic"
+    assert "target_fraction=0.6" in repr(by_path)
+
+
+def test_from_dict_is_the_same_scene_as_its_toml():
+    scene = copy.deepcopy(SMALL_SCENE)
+    scene["box"]["size"] = np.array([30.0, 30.0, 30.0])  # numpy values are accepted
+    a = gp.pack(gp.Scene.from_dict(scene), progress=False)
+    b = gp.pack(gp.Scene.from_toml(TOML_OF_SMALL), progress=False)
+    np.testing.assert_array_equal(a.centres, b.centres)
+    assert a.summary["grains"] == b.summary["grains"]
+
+
+TOML_OF_SMALL = """seed = 5
+target_fraction = 0.5
+[box]
+size = [30.0, 30.0, 30.0]
+boundary = "periodic"
+[[phase]]
+name = "matrix"
+share = 0.7
+size = { distribution = "lognormal", sigma = 0.3, scale = 7.0, min = 4.0, max = 12.0 }
+aspect_ratio = { distribution = "uniform", min = 1.0, max = 1.5 }
+orientation = { kind = "random" }
+[[phase]]
+name = "needles"
+share = 0.3
+size = { distribution = "normal", mean = 6.0, std = 1.0, min = 4.0, max = 8.0 }
+aspect_ratio = { distribution = "constant", value = 3.0 }
+orientation = { kind = "aligned" }
+"""
+
+
+@pytest.mark.parametrize("name, text, line, key", BAD, ids=[b[0] for b in BAD])
+def test_bad_scenes_raise_scene_error_with_the_clis_message(tmp_path, pack_cli, name, text, line, key):
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    with pytest.raises(gp.SceneError) as caught:
+        gp.Scene.from_toml(path)
+    e = caught.value
+    assert isinstance(e, ValueError)
+    assert (e.file, e.line, e.key) == (str(path), line, key)
+    assert str(e).startswith(f"{path}:{line}:")
+    # The CLI, on the same file: exit code 2 and the same message.
+    run = subprocess.run([pack_cli, path, "--out", tmp_path / "out"], capture_output=True, text=True)
+    assert run.returncode == 2
+    assert run.stderr.strip() == f"pack: error: {e}"
+    assert not (tmp_path / "out").exists()
+
+
+def test_errors_in_text_and_dicts_are_located_by_key():
+    with pytest.raises(gp.SceneError, match=r"^<string>:5:8: box.size = \[30.0, -30.0, 30.0\]"):
+        gp.Scene.from_toml(BAD[2][1])
+    scene = copy.deepcopy(SMALL_SCENE)
+    scene["phase"][1]["size"]["std"] = -1.0
+    with pytest.raises(gp.SceneError) as caught:
+        gp.Scene.from_dict(scene)
+    assert caught.value.key == "phase[1].size.std" and caught.value.file == "<dict>"
+    assert caught.value.value == "-1.0"
+    scene = copy.deepcopy(SMALL_SCENE)
+    scene["box"]["colour"] = "red"
+    with pytest.raises(gp.SceneError, match="box.colour"):
+        gp.Scene.from_dict(scene)
+    with pytest.raises(ValueError, match=r"^box.boundary = None"):
+        gp.Scene.from_dict({**SMALL_SCENE, "box": {"size": [30.0] * 3, "boundary": None}})
+    with pytest.raises(ValueError, match="TOML cannot"):
+        gp.Scene.from_dict({**SMALL_SCENE, "target_fraction": float("nan")})
+    with pytest.raises(TypeError):
+        gp.Scene.from_dict([("seed", 1)])
+
+
+def test_a_missing_file_is_a_scene_error_naming_it(tmp_path):
+    missing = tmp_path / "nowhere.toml"
+    with pytest.raises(gp.SceneError, match=f"^cannot read scene file {missing}: ") as caught:
+        gp.Scene.from_toml(missing)
+    assert caught.value.file == str(missing) and caught.value.line is None
