@@ -198,3 +198,29 @@ pub fn contact_geometry_rows<'py>(
         rows.gap.into_pyarray(py),
     ))
 }
+
+/// For `python/benches/contact.py`: the seconds one call of the library's batch
+/// (`contact_functions`) takes on all the rows at once, already in its own layout, for
+/// each of `rounds` rounds: the baseline the Python function is compared with.
+#[pyfunction]
+pub fn _rust_batch_seconds(
+    py: Python<'_>,
+    r12: PyReadonlyArray2<'_, f64>,
+    q1: PyReadonlyArray2<'_, f64>,
+    q2: PyReadonlyArray2<'_, f64>,
+    rounds: usize,
+) -> PyResult<Vec<f64>> {
+    let p = pairs(&r12, &q1, &q2)?;
+    let rows: Vec<(Vec3, Sym3, Sym3)> = (0..p.len()).map(|i| p.get(i)).collect();
+    Ok(py.detach(|| {
+        (0..rounds)
+            .map(|_| {
+                let started = std::time::Instant::now();
+                let answers = contact_functions(&rows);
+                let seconds = started.elapsed().as_secs_f64();
+                std::hint::black_box(answers);
+                seconds
+            })
+            .collect()
+    }))
+}

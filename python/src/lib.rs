@@ -23,5 +23,6 @@ fn _grainpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(contact::overlaps_rows, m)?)?;
     m.add_function(wrap_pyfunction!(contact::contact_geometry_rows, m)?)?;
     m.add_function(wrap_pyfunction!(pack::pack_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(contact::_rust_batch_seconds, m)?)?;
     Ok(())
 }
