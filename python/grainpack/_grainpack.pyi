@@ -85,3 +85,9 @@ def pack_scene(
     threads: int | None = None,
     progress: Callable[[int, float, float, int], Any] | None = None,
 ) -> _Packing: ...
+def _rust_batch_seconds(
+    r12: npt.NDArray[np.float64],
+    q1: npt.NDArray[np.float64],
+    q2: npt.NDArray[np.float64],
+    rounds: int,
+) -> list[float]: ...
