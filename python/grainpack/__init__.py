@@ -125,6 +125,8 @@ def overlaps(r12: Any, q1: Any, q2: Any) -> Any:
 
     Same arguments and errors as :func:`contact_function`. Returns a bool array of shape
     (n,), or a bool for a single pair. Touching ellipsoids (μ² = 1) do not overlap.
+    One pair at a time (the library has no eight-lane version of this test), with the
+    GIL released.
     """
     r, a, b, single = _rows(r12, q1, q2)
     answers = _grainpack.overlaps_rows(r, a, b)
@@ -410,11 +412,13 @@ class Packing:
 
 def _progress_printer(total_grains: float) -> Callable[[int, float, float, int], None] | None:
     """The default progress display: a tqdm bar (a widget in a notebook) when tqdm is
-    installed, else one line redrawn on stderr when it is a terminal; nothing otherwise."""
+    installed, else one line redrawn on stderr in a terminal or a notebook; nothing
+    otherwise."""
     try:
         from tqdm.auto import tqdm
     except ImportError:
-        if not sys.stderr.isatty():
+        # A notebook's output cell redraws a line ending in "\r" as a terminal does.
+        if not (sys.stderr.isatty() or "ipykernel" in sys.modules):
             return None
 
         def line(step: int, scale: float, fraction: float, overlaps: int) -> None:
@@ -458,7 +462,8 @@ def pack(
         Threads of the packing loop (default: one per core).
     progress : bool or callable, optional
         ``None`` (default): a progress bar (tqdm's, a widget in a notebook, when tqdm is
-        installed; else a line on stderr when it is a terminal). ``False``: none.
+        installed; else a line redrawn on stderr in a terminal or a notebook). ``False``:
+        none.
         A callable: called with a dict ``{"step", "scale", "fraction", "overlaps"}`` at
         most every 0.1 s, from the calling thread; an exception it raises stops the
         packing and is raised here.

@@ -21,6 +21,21 @@ const TEXT_NAME: &str = "<string>";
 #[pyclass(name = "Scene", module = "grainpack", frozen)]
 pub struct PyScene {
     pub inner: Scene,
+    /// The TOML it was read from and its name, so that it pickles (for Dask and
+    /// multiprocessing) as the text and is validated again when unpickled.
+    source: String,
+    name: String,
+}
+
+impl PyScene {
+    fn read(py: Python<'_>, text: String, name: String) -> PyResult<Self> {
+        let inner = Scene::from_str(&text, &name).map_err(|e| scene_error(py, &e))?;
+        Ok(Self {
+            inner,
+            source: text,
+            name,
+        })
+    }
 }
 
 /// The Python exception for a scene error: the CLI's message, with `file`, `line`,
@@ -74,20 +89,23 @@ impl PyScene {
     /// Reads a scene file (a path) and validates it; errors name the file.
     #[staticmethod]
     fn _from_path(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
-        let inner = py
-            .detach(|| Scene::from_path(&path))
-            .map_err(|e| scene_error(py, &e))?;
-        Ok(Self { inner })
+        // As `Scene::from_path`: the text, then validated under the path's name.
+        let text = std::fs::read_to_string(&path).map_err(|source| {
+            let error = LibSceneError::Read {
+                path: path.clone(),
+                source,
+            };
+            scene_error(py, &error)
+        })?;
+        Self::read(py, text, path.display().to_string())
     }
 
     /// Validates a scene given as TOML text; errors name it `name` (default
     /// `<string>`).
     #[staticmethod]
     #[pyo3(signature = (text, name=None))]
-    fn _from_text(py: Python<'_>, text: &str, name: Option<&str>) -> PyResult<Self> {
-        let inner =
-            Scene::from_str(text, name.unwrap_or(TEXT_NAME)).map_err(|e| scene_error(py, &e))?;
-        Ok(Self { inner })
+    fn _from_text(py: Python<'_>, text: String, name: Option<String>) -> PyResult<Self> {
+        Self::read(py, text, name.unwrap_or_else(|| TEXT_NAME.to_owned()))
     }
 
     /// Validates a scene given as JSON text (the wrapper's `json.dumps` of a dict):
@@ -102,8 +120,21 @@ impl PyScene {
         let text = toml::to_string(&value).map_err(|e| {
             PyValueError::new_err(format!("the scene cannot be written as TOML: {e}"))
         })?;
-        let inner = Scene::from_str(&text, DICT_NAME).map_err(|e| scene_error(py, &e))?;
-        Ok(Self { inner })
+        Self::read(py, text, DICT_NAME.to_owned())
+    }
+
+    /// Pickles as `(Scene._from_text, (toml, name))`: the scene is validated again when
+    /// unpickled, and its errors keep their file name.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
+        let this = slf.get();
+        let make = slf.get_type().getattr("_from_text")?;
+        Ok((make, (this.source.clone(), this.name.clone())))
+    }
+
+    /// The scene's TOML: the file's text, the text given, or the dict written as TOML.
+    #[getter]
+    fn toml(&self) -> &str {
+        &self.source
     }
 
     /// Seed of the random generator (`seed`).

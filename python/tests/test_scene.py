@@ -119,3 +119,15 @@ def test_a_missing_file_is_a_scene_error_naming_it(tmp_path):
     with pytest.raises(gp.SceneError, match=f"^cannot read scene file {missing}: ") as caught:
         gp.Scene.from_toml(missing)
     assert caught.value.file == str(missing) and caught.value.line is None
+
+
+def test_scenes_pickle_as_their_toml_and_are_validated_again(tmp_path):
+    import pickle
+
+    for scene in (gp.Scene.from_toml(EXAMPLE), gp.Scene.from_dict(SMALL_SCENE), gp.Scene.from_toml(TOML)):
+        copy_ = pickle.loads(pickle.dumps(scene))
+        assert repr(copy_) == repr(scene) and copy_.toml == scene.toml
+        a = gp.pack(scene, seed=3, progress=False) if scene.expected_count < 100 else None
+        if a is not None:
+            np.testing.assert_array_equal(gp.pack(copy_, seed=3, progress=False).centres, a.centres)
+    assert gp.Scene.from_toml(EXAMPLE).toml == EXAMPLE.read_text()
