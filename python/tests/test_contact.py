@@ -191,6 +191,7 @@ def test_a_bad_row_raises_naming_it_and_nothing_crashes():
         ((np.zeros((4, 2)), np.zeros((4, 6)), np.zeros((4, 6))), r"r12 has shape \(4, 2\)"),
         ((np.zeros(3), np.zeros(5), np.zeros(6)), r"q1 has shape \(5,\)"),
         ((np.zeros((2, 2, 3)), np.zeros((2, 6)), np.zeros((2, 6))), "r12 has shape"),
+        ((np.zeros(3), np.zeros((2, 6)), np.zeros((2, 6))), r"r12 has shape \(3,\), expected \(n, 3\) with n = 2"),
     ],
 )
 def test_arrays_of_the_wrong_shape_raise_value_error(args, message):
