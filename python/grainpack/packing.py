@@ -30,6 +30,9 @@ class Packing:
         ``summary.json``'s content: the same keys and values the CLI writes (the
         timings are this run's). Before :meth:`write`, without the ``rve`` entry and
         with ``timings.outputs = 0``; after it, exactly the file written.
+
+    A Packing lives in the process that packed it (it does not pickle): from Dask or
+    multiprocessing tasks, return its ``summary``, its arrays, or write it.
     """
 
     def __init__(self, native: Any) -> None:
