@@ -37,7 +37,7 @@ mod centers;
 mod icosphere;
 mod surfaces;
 
-pub use centers::{quadratic_form, shape_tensor, write_centers_vtp};
+pub use centers::{quadratic_form, shape_tensor, write_centers_vtp, write_centers_vtp_oriented};
 pub use icosphere::Icosphere;
 pub use surfaces::{periodic_shifts, write_grains_vtu};
 
