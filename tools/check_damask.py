@@ -11,6 +11,8 @@ own Python package (damask, pinned in tools/requirements-exports.txt).
   CSV's o0..o3 and DAMASK's own quaternion of the CSV's Bunge Euler angles
   (`damask.Rotation.from_Euler_angles`, degrees) to ORIENTATION_TOL; the matrix, if
   any, is last.
+- `centers.vtp` and `grains.vtu` (PyVista): the point data and cell data
+  `crystal_quaternion` and `euler_angles` are the CSV's, exactly.
 - `load.yaml`: `damask.LoadcaseGrid.load` reads it, with one load step.
 
 Exit code 0 when every check passes, 1 with the failures listed otherwise.
@@ -78,6 +80,21 @@ def main():
     if rve["fill"] == "matrix":
         last = materials[-1]["constituents"][0]["phase"]
         check(last not in names or last == "matrix_fill", f"the last material's phase {last} is not the matrix")
+    # The same orientations in the VTK files (PyVista, VTK's own reader).
+    import pyvista
+    csv_o = np.array([[float(r[c]) for c in ("o0", "o1", "o2", "o3")] for r in grains])
+    csv_e = np.array([[float(r[c]) for c in ("phi1", "Phi", "phi2")] for r in grains])
+    centers = pyvista.read(os.path.join(out, "centers.vtp"))
+    check(np.array_equal(centers.point_data["crystal_quaternion"], csv_o),
+          "centers.vtp crystal_quaternion != grains.csv o0..o3")
+    check(np.array_equal(centers.point_data["euler_angles"], csv_e),
+          "centers.vtp euler_angles != grains.csv phi1, Phi, phi2")
+    surfaces = pyvista.read(os.path.join(out, "grains.vtu"))
+    ids = surfaces.cell_data["grain_id"]
+    check(np.array_equal(surfaces.cell_data["crystal_quaternion"], csv_o[ids]),
+          "grains.vtu crystal_quaternion != grains.csv o0..o3 of each triangle's grain")
+    check(np.array_equal(surfaces.cell_data["euler_angles"], csv_e[ids]),
+          "grains.vtu euler_angles != grains.csv of each triangle's grain")
     load = damask.LoadcaseGrid.load(os.path.join(out, "load.yaml"))
     check(len(load["loadstep"]) == 1, "load.yaml has no single load step")
     print(f"material.yaml: {len(materials)} materials, complete and valid; rve.vti {[int(c) for c in grid.cells]} "

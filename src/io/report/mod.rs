@@ -36,7 +36,9 @@ use crate::io::decks::{
     write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
     MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
 };
-use crate::io::vtk::{write_centers_vtp_oriented, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
+use crate::io::vtk::{
+    write_centers_vtp_oriented, write_grains_vtu_oriented, CENTERS_VTP, GRAINS_VTU,
+};
 use crate::packing::PackedGrain;
 use crate::run::RunResult;
 use crate::scene::{quaternion_to_euler, Scene};
@@ -174,7 +176,9 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         })?;
     }
     if let Some(vtk) = &output.vtk {
-        files.write(GRAINS_VTU, |w| write_grains_vtu(w, grains, domain, vtk))?;
+        files.write(GRAINS_VTU, |w| {
+            write_grains_vtu_oriented(w, grains, domain, vtk, Some(&crystals))
+        })?;
     }
     if output.centers {
         files.write(CENTERS_VTP, |w| {
