@@ -36,17 +36,23 @@ use crate::io::decks::{
     write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
     MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
 };
+use crate::io::plots::render_pole_figures_png;
 use crate::io::vtk::{
     write_centers_vtp_oriented, write_grains_vtu_oriented, CENTERS_VTP, GRAINS_VTU,
 };
 use crate::packing::PackedGrain;
 use crate::run::RunResult;
-use crate::scene::{quaternion_to_euler, Scene};
+use crate::scene::{quaternion_to_euler, PhaseTexture, Scene};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 /// File name of the grain table.
 pub const GRAINS_CSV: &str = "grains.csv";
+
+/// File name of the pole figures of the crystal orientations, written with
+/// `statistics_png` when a phase has a texture other than the default (random) or
+/// `damask` or `abaqus` is on.
+pub const POLE_FIGURES_PNG: &str = "pole_figures.png";
 
 /// File name of the summary.
 pub const SUMMARY_JSON: &str = "summary.json";
@@ -183,6 +189,16 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     if output.centers {
         files.write(CENTERS_VTP, |w| {
             write_centers_vtp_oriented(w, grains, Some(&crystals))
+        })?;
+    }
+    // Where it helps: a texture was asked for, or orientations go to a solver.
+    let textured = scene
+        .phases
+        .iter()
+        .any(|p| p.texture != PhaseTexture::default());
+    if output.statistics_png && (textured || output.damask || output.abaqus) {
+        files.write(POLE_FIGURES_PNG, |w| {
+            render_pole_figures_png(w, &scene.phases, grains, &crystals).map_err(io::Error::other)
         })?;
     }
     let rve = write_derived_with(
