@@ -2,6 +2,7 @@
 
 pub mod atomic;
 pub mod cases;
+pub mod decks;
 pub mod plots;
 pub mod report;
 pub mod scene;

@@ -120,9 +120,10 @@ pub fn run(scene: &Scene, options: RunOptions) -> Result<RunResult, RunError> {
         tuning,
     } = options;
     let seed = seed.unwrap_or(scene.seed);
-    let specs = scene
+    let mut specs = scene
         .sample_grains(&mut ChaCha8Rng::seed_from_u64(seed))
         .map_err(RunError::Sample)?;
+    scene.sample_crystals(&mut specs, &mut Scene::crystal_rng(seed));
     let never = AtomicBool::new(false);
     let stop = interrupt.unwrap_or(&never);
     let mut silent = |_: &Progress| {};

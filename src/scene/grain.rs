@@ -7,6 +7,9 @@ use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
 use thiserror::Error;
 
+/// The ChaCha8 stream of the crystal orientations (the shapes use stream 0).
+pub const CRYSTAL_STREAM: u64 = 1;
+
 /// One grain as drawn, before packing: its target shape and orientation.
 ///
 /// The grain is a spheroid with semi-axes `[a1, a2, a3]`, `a2 = a3`, of the same volume
@@ -33,6 +36,11 @@ pub struct GrainSpec {
     ///
     /// [`Rotation::Axis`]: super::Rotation::Axis
     pub turn_axis: Option<[f64; 3]>,
+    /// Crystal orientation as drawn from the phase's texture (see
+    /// [`PhaseTexture::in_sample`](super::PhaseTexture::in_sample) for the grain's
+    /// orientation in the sample): scalar-first unit quaternion, `q0 ≥ 0`. Identity
+    /// until [`Scene::sample_crystals`] draws it.
+    pub crystal: [f64; 4],
 }
 
 impl GrainSpec {
@@ -53,6 +61,7 @@ impl GrainSpec {
             aspect_ratio,
             tilt,
             turn_axis: None,
+            crystal: [1.0, 0.0, 0.0, 0.0],
         }
     }
 
@@ -141,6 +150,24 @@ impl Scene {
     /// with any number of threads.
     pub fn rng(&self) -> ChaCha8Rng {
         ChaCha8Rng::seed_from_u64(self.seed)
+    }
+
+    /// Draws the crystal orientation of every grain from its phase's texture, one
+    /// after another from `rng`. Drawn after the shapes, from a stream of its own
+    /// ([`Scene::crystal_rng`] in [`crate::run::run`]), so that textures do not change
+    /// the grains a seed gives.
+    pub fn sample_crystals<R: Rng + ?Sized>(&self, grains: &mut [GrainSpec], rng: &mut R) {
+        for g in grains {
+            g.crystal = self.phases[g.phase].texture.texture.sample(rng);
+        }
+    }
+
+    /// The random generator of the crystal orientations: ChaCha8 seeded with `seed`
+    /// (the scene's, or the run's), on stream [`CRYSTAL_STREAM`].
+    pub fn crystal_rng(seed: u64) -> ChaCha8Rng {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(CRYSTAL_STREAM);
+        rng
     }
 
     /// Draws the scene's grains, one after another from `rng`.

@@ -23,14 +23,21 @@
 //! assert_eq!(grains.len(), 50);
 //! ```
 
+mod crystal;
 mod domain;
+mod elastic;
 mod grain;
 mod orientation;
 mod output;
 mod params;
 
+pub use crystal::{
+    euler_to_quaternion, fibre_angle, fibre_angle_cdf, quaternion_to_euler, random_angle_cdf,
+    rotate, rotation_angle, PhaseTexture, Texture,
+};
 pub use domain::{Boundary, Domain};
-pub use grain::{aspect_ratio, GrainSpec, SampleError};
+pub use elastic::Elastic;
+pub use grain::{aspect_ratio, GrainSpec, SampleError, CRYSTAL_STREAM};
 pub use orientation::{tilt_angle, tilt_angle_of, Axis, Orientation};
 pub use output::{
     proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
@@ -68,6 +75,18 @@ pub struct Scene {
     pub packing: PackingParams,
     /// What to write, and where.
     pub output: OutputSpec,
+    /// The matrix material of `rve_fill = "matrix"` (`[matrix]`).
+    pub matrix: Matrix,
+}
+
+/// The matrix material of a voxel RVE with `rve_fill = "matrix"` (`[matrix]`): the
+/// material after the grains in `material.yaml` and `rve.inp`.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Matrix {
+    /// Isotropic elastic constants (`[matrix.elastic]`).
+    pub elastic: Option<Elastic>,
+    /// The matrix's DAMASK `phase` entry (`[matrix.damask]`), passed through.
+    pub damask: Option<toml::Table>,
 }
 
 /// How many grains a scene has.
@@ -94,6 +113,14 @@ pub struct Phase {
     pub aspect_ratio: Distribution,
     /// How the grains are oriented.
     pub orientation: Orientation,
+    /// The law of the grains' crystal orientations (`[phase.texture]`).
+    pub texture: PhaseTexture,
+    /// Isotropic elastic constants (`[phase.elastic]`), for the Abaqus deck and
+    /// DAMASK's placeholder; `None` if not given.
+    pub elastic: Option<Elastic>,
+    /// The phase's DAMASK `phase` entry (`[phase.damask]`), passed through to
+    /// `material.yaml` as written; `None` for the documented placeholder.
+    pub damask: Option<toml::Table>,
 }
 
 impl Phase {

@@ -138,7 +138,7 @@ pub(crate) fn multiply(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
 }
 
 /// `q` or `−q`, whichever has `w ≥ 0` (the same rotation).
-fn canonical(q: [f64; 4]) -> [f64; 4] {
+pub(crate) fn canonical(q: [f64; 4]) -> [f64; 4] {
     if q[0] < 0.0 {
         q.map(|v| -v)
     } else {

@@ -49,6 +49,12 @@ pub struct OutputSpec {
     pub rve: Option<RveSpec>,
     /// Write PNG plots of the grain statistics against their targets. Default true.
     pub statistics_png: bool,
+    /// Write DAMASK's `material.yaml` and a `load.yaml` beside `rve.vti` (`damask`,
+    /// which implies `rve = true`). Default false.
+    pub damask: bool,
+    /// Write the Abaqus/CalculiX deck `rve.inp` beside `rve.vti` (`abaqus`, which
+    /// implies `rve = true`). Default false.
+    pub abaqus: bool,
 }
 
 impl Default for OutputSpec {
@@ -61,6 +67,8 @@ impl Default for OutputSpec {
             centers: true,
             rve: None,
             statistics_png: true,
+            damask: false,
+            abaqus: false,
         }
     }
 }

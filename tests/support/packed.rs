@@ -38,11 +38,14 @@ impl Grain {
 pub fn read_grains(path: &Path) -> Vec<Grain> {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("id,phase,x,y,z,a1,a2,a3,qw,qx,qy,qz"));
+    assert_eq!(
+        lines.next(),
+        Some("id,phase,x,y,z,a1,a2,a3,qw,qx,qy,qz,o0,o1,o2,o3,phi1,Phi,phi2")
+    );
     lines
         .map(|line| {
             let f: Vec<&str> = line.split(',').collect();
-            assert_eq!(f.len(), 12, "{line}");
+            assert_eq!(f.len(), 19, "{line}");
             let v: Vec<f64> = f[2..].iter().map(|s| s.parse().unwrap()).collect();
             let quaternion = Quaternion::new(v[6], v[7], v[8], v[9]);
             // Written quaternions are unit to rounding (a few ulps).

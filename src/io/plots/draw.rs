@@ -10,7 +10,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::sync::OnceLock;
 
 /// The family name the embedded font is registered under.
-const FONT: &str = "DejaVu Sans";
+pub(super) const FONT: &str = "DejaVu Sans";
 
 /// The embedded font (DejaVu Sans, licence in `assets/fonts/DejaVu-LICENSE.txt`).
 static FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
@@ -44,7 +44,7 @@ pub(super) const TARGET: RGBColor = RGBColor(214, 39, 40);
 pub(super) const VOXEL: RGBColor = RGBColor(255, 127, 14);
 
 /// Registers the embedded font with plotters, once per process.
-fn register_font() -> Result<(), PlotError> {
+pub(super) fn register_font() -> Result<(), PlotError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = REGISTERED.get_or_init(|| {
         plotters::style::register_font(FONT, FontStyle::Normal, FONT_BYTES).is_ok()
@@ -57,7 +57,7 @@ fn register_font() -> Result<(), PlotError> {
 }
 
 /// Maps a plotters error to [`PlotError::Draw`] naming `what` was being drawn.
-fn failed<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> PlotError + '_ {
+pub(super) fn failed<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> PlotError + '_ {
     move |e| PlotError::Draw {
         what: what.to_string(),
         message: e.to_string(),

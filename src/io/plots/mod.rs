@@ -33,9 +33,11 @@
 mod draw;
 mod histogram;
 mod panel;
+mod poles;
 
 pub use histogram::{aligned_bins, freedman_diaconis_bins, Histogram, MAX_BINS, MIN_BINS};
 pub use panel::axis_polar_angle;
+pub use poles::{equal_area, render_pole_figures_png};
 
 use crate::io::atomic::write_atomically;
 use crate::packing::PackedGrain;

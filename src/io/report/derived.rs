@@ -5,7 +5,9 @@
 use super::{OutputFiles, ReportError};
 use crate::contact::{dot, rotation_column, sphere_diameter};
 use crate::io::plots::{render_statistics_png, VoxelSample};
-use crate::io::voxel::{grain_report, voxelise, write_sections_png, write_vti, VoxelReport};
+use crate::io::voxel::{
+    grain_report, voxelise, write_sections_png, write_vti, VoxelGrid, VoxelReport,
+};
 use crate::packing::PackedGrain;
 use crate::scene::{tilt_angle_of, Domain, Orientation, OutputSpec, Phase, RveFill};
 use serde::Serialize;
@@ -77,6 +79,19 @@ pub fn write_derived(
     grains: &[PackedGrain],
     files: &mut OutputFiles,
 ) -> Result<Option<RveSummary>, ReportError> {
+    write_derived_with(output, phases, domain, grains, files, |_, _| Ok(()))
+}
+
+/// [`write_derived`], calling `beside_rve` with the voxel grid once `rve.vti` is
+/// written (for the files written on its cells: DAMASK's and Abaqus').
+pub fn write_derived_with(
+    output: &OutputSpec,
+    phases: &[Phase],
+    domain: &Domain,
+    grains: &[PackedGrain],
+    files: &mut OutputFiles,
+    beside_rve: impl FnOnce(&VoxelGrid, &mut OutputFiles) -> Result<(), ReportError>,
+) -> Result<Option<RveSummary>, ReportError> {
     let (mut samples, mut summary) = (None, None);
     if let Some(rve) = &output.rve {
         let fill = rve.fill;
@@ -85,6 +100,7 @@ pub fn write_derived(
             .map_err(|e| files.error(RVE_VTI, io::Error::other(e)))?;
         let seconds = start.elapsed().as_secs_f64();
         files.write(RVE_VTI, |w| write_vti(&grid, w))?;
+        beside_rve(&grid, files)?;
         let report = grain_report(&grid, grains)
             .map_err(|e| files.error(RVE_GRAINS_CSV, io::Error::other(e)))?;
         files.write(RVE_GRAINS_CSV, |w| write_rve_grains(w, &report))?;

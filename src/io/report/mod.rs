@@ -20,24 +20,39 @@
 
 mod derived;
 mod summary;
+mod texture;
 
 pub use derived::{
-    write_derived, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
+    write_derived, write_derived_with, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG,
+    STATISTICS_PNG,
 };
 
 pub use summary::{CounterSummary, Summary, TimingSummary};
+pub use texture::{crystal_orientations, texture_summaries, TextureSummary};
 
 use crate::io::atomic::write_atomically;
 use crate::io::cases::format_17;
-use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
+use crate::io::decks::{
+    write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
+    MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
+};
+use crate::io::plots::render_pole_figures_png;
+use crate::io::vtk::{
+    write_centers_vtp_oriented, write_grains_vtu_oriented, CENTERS_VTP, GRAINS_VTU,
+};
 use crate::packing::PackedGrain;
 use crate::run::RunResult;
-use crate::scene::Scene;
+use crate::scene::{quaternion_to_euler, PhaseTexture, Scene};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 /// File name of the grain table.
 pub const GRAINS_CSV: &str = "grains.csv";
+
+/// File name of the pole figures of the crystal orientations, written with
+/// `statistics_png` when a phase has a texture other than the default (random) or
+/// `damask` or `abaqus` is on.
+pub const POLE_FIGURES_PNG: &str = "pole_figures.png";
 
 /// File name of the summary.
 pub const SUMMARY_JSON: &str = "summary.json";
@@ -47,6 +62,41 @@ pub const SUMMARY_JSON: &str = "summary.json";
 pub const GRAINS_HEADER: [&str; 12] = [
     "id", "phase", "x", "y", "z", "a1", "a2", "a3", "qw", "qx", "qy", "qz",
 ];
+
+/// Columns appended to `grains.csv` (after [`GRAINS_HEADER`]): the grain's crystal
+/// orientation in the sample frame, as a unit quaternion `o0..o3` (scalar first,
+/// `o0 ≥ 0`, DAMASK's convention: see [`crate::scene::euler_to_quaternion`]) and as
+/// Bunge Euler angles in degrees.
+pub const CRYSTAL_HEADER: [&str; 7] = ["o0", "o1", "o2", "o3", "phi1", "Phi", "phi2"];
+
+/// Writes the grain table with the crystal orientations: [`GRAINS_HEADER`] then
+/// [`CRYSTAL_HEADER`], `crystals[i]` for `grains[i]`.
+pub fn write_grains_csv_oriented(
+    out: &mut dyn Write,
+    grains: &[PackedGrain],
+    crystals: &[[f64; 4]],
+) -> io::Result<()> {
+    let mut writer = csv::Writer::from_writer(out);
+    writer.write_record(GRAINS_HEADER.iter().chain(&CRYSTAL_HEADER))?;
+    let mut row = Vec::with_capacity(GRAINS_HEADER.len() + CRYSTAL_HEADER.len());
+    for (g, o) in grains.iter().zip(crystals) {
+        row.clear();
+        row.push(g.id.to_string());
+        row.push(g.phase.to_string());
+        let euler = quaternion_to_euler(*o).map(f64::to_degrees);
+        row.extend(
+            g.centre
+                .iter()
+                .chain(&g.semi_axes)
+                .chain(&g.quaternion)
+                .chain(o)
+                .chain(&euler)
+                .map(|&v| format_17(v)),
+        );
+        writer.write_record(&row)?;
+    }
+    writer.flush()
+}
 
 /// Why the outputs could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -125,16 +175,54 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         create_dir(&output.dir)?;
     }
     let mut files = OutputFiles::new(&output.dir);
+    let crystals = crystal_orientations(scene, result);
     if output.grains_csv {
-        files.write(GRAINS_CSV, |w| write_grains_csv(w, grains))?;
+        files.write(GRAINS_CSV, |w| {
+            write_grains_csv_oriented(w, grains, &crystals)
+        })?;
     }
     if let Some(vtk) = &output.vtk {
-        files.write(GRAINS_VTU, |w| write_grains_vtu(w, grains, domain, vtk))?;
+        files.write(GRAINS_VTU, |w| {
+            write_grains_vtu_oriented(w, grains, domain, vtk, Some(&crystals))
+        })?;
     }
     if output.centers {
-        files.write(CENTERS_VTP, |w| write_centers_vtp(w, grains))?;
+        files.write(CENTERS_VTP, |w| {
+            write_centers_vtp_oriented(w, grains, Some(&crystals))
+        })?;
     }
-    let rve = write_derived(output, &scene.phases, domain, grains, &mut files)?;
+    // Where it helps: a texture was asked for, or orientations go to a solver.
+    let textured = scene
+        .phases
+        .iter()
+        .any(|p| p.texture != PhaseTexture::default());
+    if output.statistics_png && (textured || output.damask || output.abaqus) {
+        files.write(POLE_FIGURES_PNG, |w| {
+            render_pole_figures_png(w, &scene.phases, grains, &crystals).map_err(io::Error::other)
+        })?;
+    }
+    let rve = write_derived_with(
+        output,
+        &scene.phases,
+        domain,
+        grains,
+        &mut files,
+        |grid, files| {
+            if output.damask {
+                files.write(MATERIAL_YAML, |w| {
+                    write_material_yaml(w, scene, grains, &crystals, grid)
+                })?;
+                files.write(LOAD_YAML, |w| write_load_yaml(w, grid))?;
+            }
+            if output.abaqus {
+                files.write(RVE_INP, |w| write_abaqus_deck(w, scene, grid))?;
+                files.write(RVE_UMAT_INP, |w| {
+                    write_umat_sections(w, scene, grains, &crystals, grid)
+                })?;
+            }
+            Ok(())
+        },
+    )?;
     let seconds = started.elapsed().as_secs_f64();
     if output.summary_json {
         let summary = Summary::new(scene, result, rve.as_ref(), seconds);

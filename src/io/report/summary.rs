@@ -2,6 +2,7 @@
 //! those of the packed grains. A serialization of a [`RunResult`] and of what the
 //! writers measured, built once when everything else is written.
 
+use super::texture::{crystal_orientations, texture_summaries, TextureSummary};
 use super::RveSummary;
 use crate::run::{PhaseStatistics, RunResult, TurnStatistics};
 use crate::scene::{Boundary, Scene};
@@ -53,6 +54,8 @@ pub struct Summary<'a> {
     /// The voxel RVE, when one was written.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rve: Option<&'a RveSummary>,
+    /// Each phase's crystal orientations against its texture.
+    pub textures: Vec<TextureSummary>,
 }
 
 /// Seconds spent: the loop's stages, the loop as a whole, and the run.
@@ -135,6 +138,7 @@ impl<'a> Summary<'a> {
             rotation: &statistics.rotation,
             phases: &statistics.phases,
             rve,
+            textures: texture_summaries(scene, result, &crystal_orientations(scene, result)),
         }
     }
 }

@@ -78,6 +78,31 @@ pub enum SceneError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A data file named by the scene (an orientation file) cannot be read or has a
+    /// bad row.
+    #[error("{0}")]
+    DataFile(Box<DataFileError>),
+}
+
+/// What is wrong in a data file named by the scene: the file, its line (1-based; 0 for
+/// the file as a whole), the column, the value, and the scene key that named it.
+#[derive(Debug, Error)]
+#[error("{path}:{line}: {column} = {value}: {reason} (from {key} in {file})")]
+pub struct DataFileError {
+    /// The scene file's name as given.
+    pub file: String,
+    /// The scene key that names the data file.
+    pub key: String,
+    /// The data file, as resolved.
+    pub path: String,
+    /// 1-based line; 0 for the whole file.
+    pub line: usize,
+    /// The column's header (or `(file)`, `(header)`, `(row)`).
+    pub column: String,
+    /// The value as written.
+    pub value: String,
+    /// What is wrong with it.
+    pub reason: String,
 }
 
 /// The text being validated and its name, to turn byte spans into error locations.

@@ -12,7 +12,7 @@ mod error;
 mod raw;
 mod validate;
 
-pub use error::{SceneError, TOP_LEVEL};
+pub use error::{DataFileError, SceneError, TOP_LEVEL};
 
 use crate::scene::Scene;
 use std::path::Path;

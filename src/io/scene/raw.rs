@@ -20,6 +20,49 @@ pub(crate) struct RawScene {
     pub phase: Vec<Spanned<RawPhase>>,
     pub packing: Opt<RawPacking>,
     pub output: Opt<RawOutput>,
+    pub matrix: Opt<RawMatrix>,
+}
+
+/// `[matrix]`: the matrix material of `rve_fill = "matrix"`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMatrix {
+    pub elastic: Opt<RawElastic>,
+    pub damask: Opt<toml::Table>,
+}
+
+/// `[phase.elastic]`, `[matrix.elastic]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawElastic {
+    #[serde(rename = "E")]
+    pub young: Spanned<f64>,
+    pub nu: Spanned<f64>,
+}
+
+/// `[phase.texture]`: every kind's keys, each optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawTexture {
+    pub kind: Spanned<RawTextureKind>,
+    pub quaternion: Opt<[f64; 4]>,
+    pub euler: Opt<[f64; 3]>,
+    pub crystal_direction: Opt<[f64; 3]>,
+    /// `"x"`, `"y"`, `"z"` or `[x, y, z]`: checked by validation.
+    pub sample_direction: Opt<toml::Value>,
+    pub kappa: Opt<f64>,
+    pub file: Opt<String>,
+    pub relative_to_shape: Opt<bool>,
+}
+
+/// `texture.kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum RawTextureKind {
+    Random,
+    Fixed,
+    Fibre,
+    File,
 }
 
 /// `[box]`.
@@ -47,6 +90,9 @@ pub(crate) struct RawPhase {
     pub size: Spanned<RawDistribution>,
     pub aspect_ratio: Opt<RawDistribution>,
     pub orientation: Opt<RawOrientation>,
+    pub texture: Opt<RawTexture>,
+    pub elastic: Opt<RawElastic>,
+    pub damask: Opt<toml::Table>,
 }
 
 /// `[phase.size]` and `[phase.aspect_ratio]`: every family's keys, each optional;
@@ -153,6 +199,8 @@ pub(crate) struct RawOutput {
     pub rve_fill: Opt<RawFill>,
     pub sections_png: Opt<bool>,
     pub statistics_png: Opt<bool>,
+    pub damask: Opt<bool>,
+    pub abaqus: Opt<bool>,
 }
 
 /// `output.rve_fill`.

@@ -2,6 +2,7 @@
 
 use super::{encode, grain_id, phase_index, rotation};
 use crate::packing::PackedGrain;
+use crate::scene::quaternion_to_euler;
 use std::io::{self, Write};
 use vtkio::model::{Attribute, Attributes, DataSet, IOBuffer, PolyDataPiece, VertexNumbers};
 
@@ -39,6 +40,17 @@ pub fn quadratic_form(grain: &PackedGrain) -> [f64; 9] {
 /// `semi_axes` (3 components), `shape_tensor` ([`shape_tensor`], 9 components, the
 /// active tensors) and `quadratic_form` ([`quadratic_form`], 9 components).
 pub fn write_centers_vtp(out: &mut dyn Write, grains: &[PackedGrain]) -> io::Result<()> {
+    write_centers_vtp_oriented(out, grains, None)
+}
+
+/// [`write_centers_vtp`], with `crystals[i]`, the crystal orientation of `grains[i]`,
+/// as point data `crystal_quaternion` (4 components, scalar first) and
+/// `euler_angles` (Bunge, degrees) when given.
+pub fn write_centers_vtp_oriented(
+    out: &mut dyn Write,
+    grains: &[PackedGrain],
+    crystals: Option<&[[f64; 4]]>,
+) -> io::Result<()> {
     let n = grains.len();
     let mut ids = Vec::with_capacity(n);
     let mut phases = Vec::with_capacity(n);
@@ -66,7 +78,20 @@ pub fn write_centers_vtp(out: &mut dyn Write, grains: &[PackedGrain]) -> io::Res
                     .with_data(grains.iter().flat_map(shape_tensor).collect::<Vec<f64>>()),
                 Attribute::generic("quadratic_form", 9)
                     .with_data(grains.iter().flat_map(quadratic_form).collect::<Vec<f64>>()),
-            ],
+            ]
+            .into_iter()
+            .chain(crystals.into_iter().flat_map(|c| {
+                [
+                    Attribute::generic("crystal_quaternion", 4)
+                        .with_data(c.iter().flatten().copied().collect::<Vec<f64>>()),
+                    Attribute::generic("euler_angles", 3).with_data(
+                        c.iter()
+                            .flat_map(|&q| quaternion_to_euler(q).map(f64::to_degrees))
+                            .collect::<Vec<f64>>(),
+                    ),
+                ]
+            }))
+            .collect(),
             cell: Vec::new(),
         },
         ..Default::default()

@@ -37,9 +37,9 @@ mod centers;
 mod icosphere;
 mod surfaces;
 
-pub use centers::{quadratic_form, shape_tensor, write_centers_vtp};
+pub use centers::{quadratic_form, shape_tensor, write_centers_vtp, write_centers_vtp_oriented};
 pub use icosphere::Icosphere;
-pub use surfaces::{periodic_shifts, write_grains_vtu};
+pub use surfaces::{periodic_shifts, write_grains_vtu, write_grains_vtu_oriented};
 
 use crate::contact::rotation_column;
 use crate::packing::PackedGrain;

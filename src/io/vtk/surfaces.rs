@@ -4,7 +4,7 @@ use super::icosphere::Icosphere;
 use super::{encode, grain_id, phase_index, rotation, TRIANGLE};
 use crate::contact::{ellipsoid_volume, equivalent_diameter};
 use crate::packing::PackedGrain;
-use crate::scene::aspect_ratio;
+use crate::scene::{aspect_ratio, quaternion_to_euler};
 use crate::scene::{Boundary, Domain, VtkSpec};
 use std::io::{self, Write};
 use vtkio::model::{
@@ -99,12 +99,26 @@ pub fn write_grains_vtu(
     domain: &Domain,
     spec: &VtkSpec,
 ) -> io::Result<()> {
+    write_grains_vtu_oriented(out, grains, domain, spec, None)
+}
+
+/// [`write_grains_vtu`], with `crystals[i]`, the crystal orientation of `grains[i]`,
+/// as cell data `crystal_quaternion` (4 components, scalar first) and `euler_angles`
+/// (Bunge, degrees) on each of its triangles when given.
+pub fn write_grains_vtu_oriented(
+    out: &mut dyn Write,
+    grains: &[PackedGrain],
+    domain: &Domain,
+    spec: &VtkSpec,
+    crystals: Option<&[[f64; 4]]>,
+) -> io::Result<()> {
     let sphere = Icosphere::new(spec.resolution);
+    let (mut quaternions, mut eulers) = (Vec::new(), Vec::new());
     let per_grain = sphere.triangles.len();
     let mut points = Vec::new();
     let mut connectivity = Vec::new();
     let mut data = CellData::default();
-    for g in grains {
+    for (i, g) in grains.iter().enumerate() {
         let (id, phase) = (grain_id(g)?, phase_index(g)?);
         let mut copies = vec![[0.0; 3]];
         if spec.periodic_images {
@@ -123,6 +137,13 @@ pub fn write_grains_vtu(
                 .extend(std::iter::repeat_n(aspect_ratio(g.semi_axes), n));
             data.periodic_image
                 .extend(std::iter::repeat_n(i32::from(k > 0), n));
+            if let Some(o) = crystals.and_then(|c| c.get(i)) {
+                let e = quaternion_to_euler(*o).map(f64::to_degrees);
+                for _ in 0..n {
+                    quaternions.extend_from_slice(o);
+                    eulers.extend_from_slice(&e);
+                }
+            }
         }
     }
     let cells = connectivity.len() / 3;
@@ -144,7 +165,21 @@ pub fn write_grains_vtu(
                 Attribute::generic("equivalent_diameter", 1).with_data(data.equivalent_diameter),
                 Attribute::generic("aspect_ratio", 1).with_data(data.aspect_ratio),
                 Attribute::generic("periodic_image", 1).with_data(data.periodic_image),
-            ],
+            ]
+            .into_iter()
+            .chain(
+                crystals
+                    .is_some()
+                    .then(|| {
+                        [
+                            Attribute::generic("crystal_quaternion", 4).with_data(quaternions),
+                            Attribute::generic("euler_angles", 3).with_data(eulers),
+                        ]
+                    })
+                    .into_iter()
+                    .flatten(),
+            )
+            .collect(),
         },
     };
     encode(out, DataSet::inline(piece))

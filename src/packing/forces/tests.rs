@@ -20,6 +20,7 @@ fn grain(axes: [f64; 3], q: [f64; 4]) -> GrainSpec {
         aspect_ratio: axes[0] / axes[1],
         tilt: None,
         turn_axis: None,
+        crystal: [1.0, 0.0, 0.0, 0.0],
     }
 }
 

@@ -199,7 +199,11 @@ fn named_axis(value: &toml::Value) -> Option<Axis> {
 }
 
 /// `"x"`, `"y"`, `"z"` or a non-zero `[x, y, z]`, as a unit vector.
-fn direction(src: &Source, key: &str, raw: &Spanned<toml::Value>) -> Result<[f64; 3], SceneError> {
+pub(super) fn direction(
+    src: &Source,
+    key: &str,
+    raw: &Spanned<toml::Value>,
+) -> Result<[f64; 3], SceneError> {
     if let Some(axis) = named_axis(raw.get_ref()) {
         return Ok(axis.unit());
     }

@@ -3,13 +3,14 @@
 
 mod grain;
 mod output;
+mod texture;
 
 use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
-    mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase, Rotation,
-    Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
+    mean_grain_volume, Boundary, Domain, GrainCount, Matrix, Orientation, PackingParams, Phase,
+    PhaseTexture, Rotation, RveFill, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -43,14 +44,82 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         p.share /= total;
     }
 
+    let output = output::output(&src, raw.output.as_ref(), &domain)?;
+    let matrix = matrix(&src, &raw, &output)?;
+    if output.abaqus {
+        let fill = output.rve.map(|r| r.fill);
+        solids(&src, &raw, &phases, &matrix, fill)?;
+    }
     Ok(Scene {
         seed: raw.seed.as_ref().map_or(0, |s| *s.get_ref()),
         count: count(&src, &raw, &domain, &phases)?,
         domain,
         phases,
         packing: packing(&src, raw.packing.as_ref())?,
-        output: output::output(&src, raw.output.as_ref(), &domain)?,
+        output,
+        matrix,
     })
+}
+
+/// `[matrix]`: only with `rve_fill = "matrix"`, where there is a matrix.
+fn matrix(
+    src: &Source,
+    raw: &RawScene,
+    output: &crate::scene::OutputSpec,
+) -> Result<Matrix, SceneError> {
+    let Some(m) = &raw.matrix else {
+        return Ok(Matrix::default());
+    };
+    if output.rve.map(|r| r.fill) != Some(RveFill::Matrix) {
+        return Err(src.invalid_at(
+            "matrix",
+            m,
+            "applies only with a voxel RVE whose gaps are a matrix (output.rve_fill = \"matrix\")",
+        ));
+    }
+    let m = m.get_ref();
+    Ok(Matrix {
+        elastic: match &m.elastic {
+            None => None,
+            Some(e) => Some(texture::elastic(src, "matrix.elastic", e.get_ref())?),
+        },
+        damask: m.damask.as_ref().map(|d| d.get_ref().clone()),
+    })
+}
+
+/// `abaqus = true` writes a `*Material` per phase (and the matrix): each needs its
+/// elastic constants.
+fn solids(
+    src: &Source,
+    raw: &RawScene,
+    phases: &[Phase],
+    matrix: &Matrix,
+    fill: Option<RveFill>,
+) -> Result<(), SceneError> {
+    let at = raw
+        .output
+        .as_ref()
+        .and_then(|o| o.get_ref().abaqus.as_ref())
+        .map_or(0..0, Spanned::span);
+    for (i, p) in phases.iter().enumerate() {
+        if p.elastic.is_none() {
+            return Err(src.missing(
+                format!("phase[{i}].elastic"),
+                at,
+                "output.abaqus = true writes a *Material per phase: give [phase.elastic] \
+                 with E and nu",
+            ));
+        }
+    }
+    if fill == Some(RveFill::Matrix) && matrix.elastic.is_none() {
+        return Err(src.missing(
+            "matrix.elastic",
+            at,
+            "output.abaqus = true with rve_fill = \"matrix\" writes a *Material for the \
+             matrix: give [matrix.elastic] with E and nu",
+        ));
+    }
+    Ok(())
 }
 
 fn domain(src: &Source, raw: &Spanned<RawBox>) -> Result<Domain, SceneError> {
@@ -101,12 +170,28 @@ fn phase(
         None => Orientation::Random,
         Some(o) => orientation(src, &format!("{key}.orientation"), o)?,
     };
+    let spherical = aspect_ratio == Distribution::Constant { value: 1.0 };
+    let texture = match &p.texture {
+        None => PhaseTexture::default(),
+        Some(t) => texture::texture(src, &format!("{key}.texture"), t, spherical)?,
+    };
+    let elastic = match &p.elastic {
+        None => None,
+        Some(e) => Some(texture::elastic(
+            src,
+            &format!("{key}.elastic"),
+            e.get_ref(),
+        )?),
+    };
     let phase = Phase {
         name,
         share,
         size,
         aspect_ratio,
         orientation,
+        texture,
+        elastic,
+        damask: p.damask.as_ref().map(|d| d.get_ref().clone()),
     };
 
     let (longest, side) = (phase.max_length(), domain.min_side());

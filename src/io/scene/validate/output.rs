@@ -33,6 +33,8 @@ pub(super) fn output(
     spec.summary_json = flag(&raw.summary_json, spec.summary_json);
     spec.centers = flag(&raw.centers, spec.centers);
     spec.statistics_png = flag(&raw.statistics_png, spec.statistics_png);
+    spec.damask = flag(&raw.damask, false);
+    spec.abaqus = flag(&raw.abaqus, false);
     spec.vtk = vtk(src, raw, domain)?;
     spec.rve = rve(src, raw, domain)?;
     Ok(spec)
@@ -84,7 +86,23 @@ fn vtk(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<VtkSpec>
 
 /// `rve`, `rve_resolution` or `rve_voxel_size`, `rve_fill`, `sections_png`.
 fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>, SceneError> {
-    let on = raw.rve.as_ref().is_some_and(|v| *v.get_ref());
+    // damask and abaqus write files beside rve.vti, on its cells.
+    let implied = [
+        ("output.damask", &raw.damask),
+        ("output.abaqus", &raw.abaqus),
+    ]
+    .into_iter()
+    .find_map(|(key, v)| v.as_ref().filter(|v| *v.get_ref()).map(|v| (key, v)));
+    if let (Some((key, at)), Some(rve)) = (implied, raw.rve.as_ref()) {
+        if !*rve.get_ref() {
+            return Err(src.invalid_at(
+                key,
+                at,
+                "writes files on the voxel RVE's cells, which rve = false turns off",
+            ));
+        }
+    }
+    let on = raw.rve.as_ref().is_some_and(|v| *v.get_ref()) || implied.is_some();
     if !on {
         let needs_rve = "applies only with rve = true";
         if let Some(v) = &raw.rve_resolution {

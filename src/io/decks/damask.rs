@@ -1,0 +1,148 @@
+//! DAMASK's `material.yaml` and a `load.yaml` template, beside `rve.vti`.
+
+use super::names::matrix_name;
+use crate::io::voxel::VoxelGrid;
+use crate::packing::PackedGrain;
+use crate::scene::{Elastic, RveFill, Scene};
+use std::io::{self, Write};
+
+/// File name of DAMASK's material configuration.
+pub const MATERIAL_YAML: &str = "material.yaml";
+/// File name of the load case template.
+pub const LOAD_YAML: &str = "load.yaml";
+
+/// The elastic constants of a phase with neither `[phase.damask]` nor
+/// `[phase.elastic]`: an isotropic placeholder (E = 200 GPa, ν = 0.3, in Pa as DAMASK
+/// expects), marked as one in the file, so that the set loads and runs; replace it.
+pub const PLACEHOLDER_ELASTIC: Elastic = Elastic {
+    young: 200e9,
+    poisson: 0.3,
+};
+
+/// Writes `material.yaml`: a `homogenization` `SX` (one constituent, `pass`), a
+/// `phase` entry per scene phase (its `[phase.damask]` table as written, else an
+/// isotropic Hooke phase from `[phase.elastic]`, else [`PLACEHOLDER_ELASTIC`]), the
+/// matrix's when the grid has one, and the `material` list: entry `k` is grain `k` with
+/// `O = crystals[k]` and the phase of `grains[k]` (printed so that it reads back to the same double), the matrix
+/// last with the identity.
+pub fn write_material_yaml(
+    out: &mut dyn Write,
+    scene: &Scene,
+    grains: &[PackedGrain],
+    crystals: &[[f64; 4]],
+    grid: &VoxelGrid,
+) -> io::Result<()> {
+    let matrix = grid.fill == RveFill::Matrix;
+    writeln!(out, "# DAMASK material configuration written by grainpack.")?;
+    writeln!(
+        out,
+        "# material k is grain k of grains.csv (and of rve.vti's `material`){}.",
+        if matrix { ", the matrix last" } else { "" }
+    )?;
+    writeln!(out, "homogenization:")?;
+    writeln!(out, "  SX:")?;
+    writeln!(out, "    N_constituents: 1")?;
+    writeln!(out, "    mechanical: {{type: pass}}")?;
+    writeln!(out, "phase:")?;
+    let mut names: Vec<&str> = scene.phases.iter().map(|p| p.name.as_str()).collect();
+    for p in &scene.phases {
+        write_phase(out, &p.name, p.damask.as_ref(), p.elastic)?;
+    }
+    if matrix {
+        let name = matrix_name(scene);
+        write_phase(
+            out,
+            name,
+            scene.matrix.damask.as_ref(),
+            scene.matrix.elastic,
+        )?;
+        names.push(name);
+    }
+    writeln!(out, "material:")?;
+    for (g, o) in grains.iter().zip(crystals) {
+        write_material(out, names[g.phase], *o)?;
+    }
+    if matrix {
+        write_material(out, names[names.len() - 1], [1.0, 0.0, 0.0, 0.0])?;
+    }
+    Ok(())
+}
+
+fn write_material(out: &mut dyn Write, phase: &str, o: [f64; 4]) -> io::Result<()> {
+    writeln!(out, "  - homogenization: SX")?;
+    writeln!(out, "    constituents:")?;
+    writeln!(
+        out,
+        "      - {{phase: {}, v: 1.0, O: [{:?}, {:?}, {:?}, {:?}]}}",
+        json(phase),
+        o[0],
+        o[1],
+        o[2],
+        o[3]
+    )
+}
+
+fn write_phase(
+    out: &mut dyn Write,
+    name: &str,
+    damask: Option<&toml::Table>,
+    elastic: Option<Elastic>,
+) -> io::Result<()> {
+    if let Some(table) = damask {
+        // JSON is YAML (1.2): the table goes through as written.
+        let text = serde_json::to_string(table).map_err(io::Error::other)?;
+        return writeln!(out, "  {}: {text}", json(name));
+    }
+    let (e, note) = match elastic {
+        Some(e) => (e, "isotropic Hooke, from the scene's [phase.elastic]"),
+        None => (
+            PLACEHOLDER_ELASTIC,
+            "PLACEHOLDER: isotropic elastic E = 200 GPa, nu = 0.3; give [phase.damask] \
+             (or [phase.elastic]) in the scene",
+        ),
+    };
+    let [c11, c12, c44] = e.cubic();
+    writeln!(out, "  # {note}")?;
+    writeln!(out, "  {}:", json(name))?;
+    writeln!(out, "    lattice: cF")?;
+    writeln!(out, "    rho: 1.0")?;
+    writeln!(out, "    mechanical:")?;
+    writeln!(out, "      output: [F, P, O]")?;
+    writeln!(
+        out,
+        "      elastic: {{type: Hooke, C_11: {c11:?}, C_12: {c12:?}, C_44: {c44:?}}}"
+    )
+}
+
+/// A string as a JSON (so YAML) scalar, quoted and escaped.
+fn json(s: &str) -> String {
+    serde_json::to_string(s).unwrap_or_else(|_| format!("{s:?}"))
+}
+
+/// Writes `load.yaml`, a template for DAMASK's grid solver: uniaxial tension along x
+/// at a strain rate of 10⁻³/s to 1 % (10 s in 20 increments), the other normal
+/// stresses and the shear zero.
+pub fn write_load_yaml(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
+    let [nx, ny, nz] = grid.cells;
+    writeln!(
+        out,
+        "# DAMASK load case template written by grainpack for rve.vti ({nx} x {ny} x {nz} cells):"
+    )?;
+    writeln!(
+        out,
+        "# uniaxial tension along x, 1e-3/s for 10 s (1 % strain), P = 0 elsewhere."
+    )?;
+    writeln!(
+        out,
+        "# Run: DAMASK_grid --load load.yaml --geom rve.vti --material material.yaml"
+    )?;
+    writeln!(out, "solver:")?;
+    writeln!(out, "  mechanical: spectral_basic")?;
+    writeln!(out, "loadstep:")?;
+    writeln!(out, "  - boundary_conditions:")?;
+    writeln!(out, "      mechanical:")?;
+    writeln!(out, "        dot_F: [[1.0e-3, 0, 0], [0, x, 0], [0, 0, x]]")?;
+    writeln!(out, "        P: [[x, x, x], [x, 0, x], [x, x, 0]]")?;
+    writeln!(out, "    discretization: {{t: 10, N: 20}}")?;
+    writeln!(out, "    f_out: 4")
+}

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Checks the DAMASK input set `pack` wrote (`[output] damask = true`) with DAMASK's
+own Python package (damask, pinned in tools/requirements-exports.txt).
+
+    python tools/check_damask.py OUT_DIR
+
+- `material.yaml`: `damask.ConfigMaterial.load` gives a complete and valid
+  configuration; its number of materials is `summary.json`'s `rve.materials` and covers
+  every id of `rve.vti` (read by `damask.GeomGrid.load`, whose cells and size are the
+  summary's); entry k has grain k's phase (grains.csv) and its orientation `O` equals the
+  CSV's o0..o3 and DAMASK's own quaternion of the CSV's Bunge Euler angles
+  (`damask.Rotation.from_Euler_angles`, degrees) to ORIENTATION_TOL; the matrix, if
+  any, is last.
+- `centers.vtp` and `grains.vtu` (PyVista): the point data and cell data
+  `crystal_quaternion` and `euler_angles` are the CSV's, exactly.
+- `load.yaml`: `damask.LoadcaseGrid.load` reads it, with one load step.
+
+Exit code 0 when every check passes, 1 with the failures listed otherwise.
+"""
+
+import csv
+import json
+import os
+import sys
+
+import damask
+import numpy as np
+
+# The brief's agreement of orientations with DAMASK's (the Euler angles are printed with
+# 17 significant digits, so the conversion's rounding, ~1e-16, is all that differs).
+ORIENTATION_TOL = 1e-12
+# Box size from the grid's spacing × cells, against the summary's (printed to 17 digits).
+SIZE_TOL = 1e-12
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    out = sys.argv[1]
+    failures = []
+
+    def check(ok, message):
+        if not ok:
+            failures.append(message)
+
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    with open(os.path.join(out, "grains.csv")) as f:
+        grains = list(csv.DictReader(f))
+    cfg = damask.ConfigMaterial.load(os.path.join(out, "material.yaml"))
+    check(cfg.is_complete, "material.yaml is not complete for DAMASK")
+    check(cfg.is_valid, "material.yaml is not valid for DAMASK")
+    grid = damask.GeomGrid.load(os.path.join(out, "rve.vti"))
+    rve = summary["rve"]
+    check(list(grid.cells) == rve["cells"], f"rve.vti cells {grid.cells} != {rve['cells']}")
+    check(np.allclose(grid.size, summary["box"], rtol=SIZE_TOL, atol=0),
+          f"rve.vti size {grid.size} != box {summary['box']}")
+    materials = cfg["material"]
+    check(len(materials) == rve["materials"],
+          f"{len(materials)} materials in material.yaml, {rve['materials']} in the RVE")
+    check(int(grid.material.max()) < len(materials),
+          f"rve.vti uses material {grid.material.max()}, material.yaml has {len(materials)}")
+    names = [p["name"] for p in summary["phases"]]
+    worst = 0.0
+    for k, row in enumerate(grains):
+        entry = materials[k]["constituents"][0]
+        check(entry["phase"] == names[int(row["phase"])],
+              f"material {k}: phase {entry['phase']}, grain's is {names[int(row['phase'])]}")
+        o = np.array(entry["O"], dtype=float)
+        csv_o = np.array([float(row[c]) for c in ("o0", "o1", "o2", "o3")])
+        euler = [float(row[c]) for c in ("phi1", "Phi", "phi2")]
+        theirs = damask.Rotation.from_Euler_angles(euler, degrees=True).quaternion
+        # q and -q are one rotation; DAMASK and grainpack both pick q0 >= 0, which is
+        # ambiguous only at q0 = 0.
+        d = min(np.abs(o - theirs).max(), np.abs(o + theirs).max())
+        worst = max(worst, d, np.abs(o - csv_o).max())
+        check(np.abs(o - csv_o).max() <= ORIENTATION_TOL, f"material {k}: O {o} != grains.csv {csv_o}")
+        check(d <= ORIENTATION_TOL, f"material {k}: O {o} != DAMASK's from the Euler angles {theirs}")
+    if rve["fill"] == "matrix":
+        last = materials[-1]["constituents"][0]["phase"]
+        check(last not in names or last == "matrix_fill", f"the last material's phase {last} is not the matrix")
+    # The same orientations in the VTK files (PyVista, VTK's own reader).
+    import pyvista
+    csv_o = np.array([[float(r[c]) for c in ("o0", "o1", "o2", "o3")] for r in grains])
+    csv_e = np.array([[float(r[c]) for c in ("phi1", "Phi", "phi2")] for r in grains])
+    centers = pyvista.read(os.path.join(out, "centers.vtp"))
+    check(np.array_equal(centers.point_data["crystal_quaternion"], csv_o),
+          "centers.vtp crystal_quaternion != grains.csv o0..o3")
+    check(np.array_equal(centers.point_data["euler_angles"], csv_e),
+          "centers.vtp euler_angles != grains.csv phi1, Phi, phi2")
+    surfaces = pyvista.read(os.path.join(out, "grains.vtu"))
+    ids = surfaces.cell_data["grain_id"]
+    check(np.array_equal(surfaces.cell_data["crystal_quaternion"], csv_o[ids]),
+          "grains.vtu crystal_quaternion != grains.csv o0..o3 of each triangle's grain")
+    check(np.array_equal(surfaces.cell_data["euler_angles"], csv_e[ids]),
+          "grains.vtu euler_angles != grains.csv of each triangle's grain")
+    load = damask.LoadcaseGrid.load(os.path.join(out, "load.yaml"))
+    check(len(load["loadstep"]) == 1, "load.yaml has no single load step")
+    print(f"material.yaml: {len(materials)} materials, complete and valid; rve.vti {[int(c) for c in grid.cells]} "
+          f"cells; orientations agree with DAMASK's to {worst:.1e}")
+    if failures:
+        print("FAILED:\n  " + "\n  ".join(failures))
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
