@@ -493,8 +493,8 @@ fn sampled_statistics_match_the_requested_distributions() {
     let alpha: Vec<f64> = grains.iter().map(|g| g.aspect_ratio).collect();
     let theta: Vec<f64> = grains.iter().map(|g| g.tilt.unwrap()).collect();
     for (name, xs, law) in [
-        ("diameter", &d, phase.size),
-        ("aspect", &alpha, phase.aspect_ratio),
+        ("diameter", &d, phase.size.clone()),
+        ("aspect", &alpha, phase.aspect_ratio.clone()),
     ] {
         let ks = ks_distance(xs.clone(), |x| law.cdf(x));
         assert!(ks < critical, "{name}: KS {ks} ≥ {critical}");

@@ -17,8 +17,10 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod shape_statistics;
 mod statistics;
 
+pub use shape_statistics::{OrientationStatistics, RatioStatistics, ShapeStatistics};
 pub use statistics::{PhaseStatistics, QuantityStatistics, Share, Statistics, TurnStatistics};
 
 use crate::packing::{pack, Job, PackError, Packing, Progress, Tuning, Verification};

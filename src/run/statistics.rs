@@ -58,6 +58,8 @@ impl Statistics {
                     diameter,
                     aspect_ratio,
                     tilt_angle_deg,
+                    shape: super::shape_statistics::shape(phase, &grains),
+                    orientation_3d: super::shape_statistics::orientation(phase, &grains),
                 }
             })
             .collect();
@@ -143,6 +145,12 @@ pub struct PhaseStatistics {
     /// the plane normal to the tilt axis, recovered from the packed quaternion.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tilt_angle_deg: Option<QuantityStatistics>,
+    /// For triaxial phases: the three semi-axis ratios against their laws.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape: Option<super::shape_statistics::ShapeStatistics>,
+    /// For `kind = "fisher"`: the first axis's angle to the mean direction and the spin.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub orientation_3d: Option<super::shape_statistics::OrientationStatistics>,
 }
 
 /// `a / b`, or 0 when `b` is 0 (no grains).
@@ -196,7 +204,7 @@ fn grain_statistics(
 }
 
 /// A quantity's law against its sample.
-fn quantity(law: &Distribution, sample: &[f64]) -> QuantityStatistics {
+pub(crate) fn quantity(law: &Distribution, sample: &[f64]) -> QuantityStatistics {
     QuantityStatistics {
         target: Moments {
             mean: law.mean(),

@@ -1,6 +1,6 @@
 //! Drawing grains from a scene: which phase, what size, what shape, which way round.
 
-use super::{GrainCount, Orientation, Phase, Scene, MAX_GRAINS};
+use super::{triaxial_semi_axes, GrainCount, Orientation, Phase, Scene, MAX_GRAINS};
 use crate::laws::MAX_DRAWS;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -14,6 +14,10 @@ use thiserror::Error;
 /// `a2 = a3 = (d/2) α^{−1/3}` and `a1 = α a2`, so `a1 a2 a3 = (d/2)³`. `α > 1` is prolate
 /// (a needle along the first axis), `α < 1` oblate (a platelet whose normal is the
 /// first axis). Semi-axis `k` lies along column `k` of the rotation of `quaternion`.
+///
+/// A triaxial grain (a phase with [`Triaxial`](super::Triaxial) laws) has
+/// `a1 ≥ a2 ≥ a3` from its ratios `b/a`, `c/a` at the same volume
+/// ([`triaxial_semi_axes`]), and `aspect_ratio = a1/a2`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GrainSpec {
     /// Index of the grain's phase in [`Scene::phases`].
@@ -85,7 +89,8 @@ pub enum SampleError {
         phase: usize,
         /// Phase name.
         name: String,
-        /// `"equivalent diameter"`, `"aspect ratio"` or `"tilt angle"`.
+        /// `"equivalent diameter"`, `"aspect ratio"`, `"shape ratio b/a"` (`c/a`, `c/b`),
+        /// `"tilt angle"` or `"orientation angle"`.
         quantity: &'static str,
         /// Draws made.
         draws: usize,
@@ -116,6 +121,19 @@ impl Phase {
             .size
             .sample(rng)
             .ok_or_else(|| rejected("equivalent diameter"))?;
+        if let Some(shape) = &self.triaxial {
+            let (beta, gamma) = shape.sample(rng).map_err(rejected)?;
+            let (q, _) = self
+                .orientation
+                .sample(rng)
+                .ok_or_else(|| rejected("orientation angle"))?;
+            let semi_axes = triaxial_semi_axes(d, beta, gamma);
+            return Ok(GrainSpec {
+                semi_axes,
+                aspect_ratio: 1.0 / beta,
+                ..GrainSpec::new(index, d, 1.0, q, None)
+            });
+        }
         let alpha = self
             .aspect_ratio
             .sample(rng)

@@ -24,12 +24,15 @@
 //! ```
 
 mod domain;
+mod fisher;
 mod grain;
 mod orientation;
 mod output;
 mod params;
+mod shape;
 
 pub use domain::{Boundary, Domain};
+pub use fisher::{perpendicular, FisherOrientation, Spin};
 pub use grain::{aspect_ratio, GrainSpec, SampleError};
 pub use orientation::{tilt_angle, tilt_angle_of, Axis, Orientation};
 pub use output::{
@@ -38,6 +41,7 @@ pub use output::{
     MIN_VTK_RESOLUTION,
 };
 pub use params::{PackingParams, Rotation};
+pub use shape::{triaxial_semi_axes, ThirdRatio, Triaxial};
 
 use crate::laws::Distribution;
 use std::f64::consts::PI;
@@ -94,6 +98,9 @@ pub struct Phase {
     pub aspect_ratio: Distribution,
     /// How the grains are oriented.
     pub orientation: Orientation,
+    /// For triaxial grains, the laws of `b/a` and `c/a` (or `c/b`) that replace
+    /// [`Phase::aspect_ratio`]; `None` for spheroids.
+    pub triaxial: Option<Triaxial>,
 }
 
 impl Phase {
@@ -105,8 +112,14 @@ impl Phase {
     /// The longest any grain can be end to end: `d_max · max(α_max^{2/3}, α_min^{−1/3})`
     /// (the first axis `2a1 = d α^{2/3}` of a prolate grain, the equatorial diameter
     /// `2a2 = d α^{−1/3}` of an oblate one).
+    ///
+    /// Triaxial grains: the first axis `2a = d (βγ)^{−1/3}` at the largest `d` and the
+    /// smallest `βγ` ([`Triaxial::min_product`]).
     pub fn max_length(&self) -> f64 {
         let (_, d_max) = self.size.support();
+        if let Some(t) = &self.triaxial {
+            return d_max / t.min_product().cbrt();
+        }
         let (a_min, a_max) = self.aspect_ratio.support();
         d_max * a_max.powf(2.0 / 3.0).max(a_min.powf(-1.0 / 3.0))
     }

@@ -46,6 +46,9 @@ pub(crate) struct RawPhase {
     pub share: Opt<f64>,
     pub size: Spanned<RawDistribution>,
     pub aspect_ratio: Opt<RawDistribution>,
+    pub b_over_a: Opt<RawDistribution>,
+    pub c_over_a: Opt<RawDistribution>,
+    pub c_over_b: Opt<RawDistribution>,
     pub orientation: Opt<RawOrientation>,
 }
 
@@ -63,6 +66,11 @@ pub(crate) struct RawDistribution {
     pub loc: Opt<f64>,
     pub min: Opt<f64>,
     pub max: Opt<f64>,
+    /// `distribution = "table"`: points, fractions, basis, interpolation.
+    pub x: Opt<Vec<f64>>,
+    pub cdf: Opt<Vec<f64>>,
+    pub by: Opt<String>,
+    pub interpolation: Opt<String>,
 }
 
 impl RawDistribution {
@@ -97,6 +105,7 @@ pub(crate) enum RawFamily {
     Uniform,
     Normal,
     LogNormal,
+    Table,
 }
 
 /// `[phase.orientation]`: every kind's keys, each optional.
@@ -111,6 +120,11 @@ pub(crate) struct RawOrientation {
     pub kappa: Opt<f64>,
     pub min: Opt<f64>,
     pub max: Opt<f64>,
+    /// `kind = "fisher"`: `"x"`, `"y"`, `"z"` or `[x, y, z]`.
+    pub direction: Opt<toml::Value>,
+    pub spin_reference: Opt<toml::Value>,
+    pub spin_kappa: Opt<f64>,
+    pub spin_mean: Opt<f64>,
 }
 
 /// `orientation.kind`.
@@ -121,6 +135,7 @@ pub(crate) enum RawKind {
     Fixed,
     Aligned,
     Tilt,
+    Fisher,
 }
 
 /// `[packing]`.

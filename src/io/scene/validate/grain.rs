@@ -17,7 +17,18 @@ pub(super) fn distribution(
     raw: &Spanned<RawDistribution>,
 ) -> Result<Distribution, SceneError> {
     let r = raw.get_ref();
+    if *r.distribution.get_ref() == RawFamily::Table {
+        return super::shape::table(src, key, raw);
+    }
+    if let Some((name, span)) = super::shape::table_keys(r).into_iter().flatten().next() {
+        return Err(src.invalid(
+            format!("{key}.{name}"),
+            span,
+            "applies only to distribution = \"table\"",
+        ));
+    }
     let (family, takes): (_, &[&str]) = match *r.distribution.get_ref() {
+        RawFamily::Table => unreachable!("handled above"),
         RawFamily::Constant => ("constant", &["value"]),
         RawFamily::Uniform => ("uniform", &["min", "max"]),
         RawFamily::Normal => ("normal", &["mean", "std", "min", "max"]),
@@ -45,6 +56,7 @@ pub(super) fn distribution(
         })
     };
     let d = match *r.distribution.get_ref() {
+        RawFamily::Table => unreachable!("handled above"),
         RawFamily::Constant => Distribution::Constant {
             value: need("value")?,
         },
@@ -81,19 +93,36 @@ pub(super) fn orientation(
 ) -> Result<Orientation, SceneError> {
     let o = raw.get_ref();
     let kind = *o.kind.get_ref();
-    let given: [(&str, Option<Range<usize>>); 6] = [
+    let given: [(&str, Option<Range<usize>>); 10] = [
         ("quaternion", o.quaternion.as_ref().map(Spanned::span)),
         ("axis", o.axis.as_ref().map(Spanned::span)),
         ("mean", o.mean.as_ref().map(Spanned::span)),
         ("kappa", o.kappa.as_ref().map(Spanned::span)),
         ("min", o.min.as_ref().map(Spanned::span)),
         ("max", o.max.as_ref().map(Spanned::span)),
+        ("direction", o.direction.as_ref().map(Spanned::span)),
+        (
+            "spin_reference",
+            o.spin_reference.as_ref().map(Spanned::span),
+        ),
+        ("spin_kappa", o.spin_kappa.as_ref().map(Spanned::span)),
+        ("spin_mean", o.spin_mean.as_ref().map(Spanned::span)),
     ];
     let (name, takes): (_, &[&str]) = match kind {
         RawKind::Random => ("random", &[]),
         RawKind::Fixed => ("fixed", &["quaternion"]),
         RawKind::Aligned => ("aligned", &["axis"]),
         RawKind::Tilt => ("tilt", &["axis", "mean", "kappa", "min", "max"]),
+        RawKind::Fisher => (
+            "fisher",
+            &[
+                "direction",
+                "kappa",
+                "spin_reference",
+                "spin_kappa",
+                "spin_mean",
+            ],
+        ),
     };
     for (param, span) in given {
         if let (Some(span), false) = (span, takes.contains(&param)) {
@@ -142,6 +171,7 @@ pub(super) fn orientation(
             Ok(Orientation::Aligned { axis })
         }
         RawKind::Tilt => tilt(src, key, raw),
+        RawKind::Fisher => super::shape::fisher(src, key, raw),
     }
 }
 
@@ -199,7 +229,11 @@ fn named_axis(value: &toml::Value) -> Option<Axis> {
 }
 
 /// `"x"`, `"y"`, `"z"` or a non-zero `[x, y, z]`, as a unit vector.
-fn direction(src: &Source, key: &str, raw: &Spanned<toml::Value>) -> Result<[f64; 3], SceneError> {
+pub(super) fn direction(
+    src: &Source,
+    key: &str,
+    raw: &Spanned<toml::Value>,
+) -> Result<[f64; 3], SceneError> {
     if let Some(axis) = named_axis(raw.get_ref()) {
         return Ok(axis.unit());
     }

@@ -3,6 +3,7 @@
 
 mod grain;
 mod output;
+mod shape;
 
 use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
@@ -104,9 +105,10 @@ fn phase(
     let phase = Phase {
         name,
         share,
-        size,
+        size: size.clone(),
         aspect_ratio,
         orientation,
+        triaxial: shape::triaxial(src, &key, p)?,
     };
 
     let (longest, side) = (phase.max_length(), domain.min_side());
@@ -114,20 +116,25 @@ fn phase(
         // Blame the size's upper bound; the message names the aspect ratios too.
         let param = match size {
             Distribution::Constant { .. } => "value",
+            Distribution::Table(_) => "x",
             _ => "max",
         };
-        let at = p
-            .size
-            .get_ref()
-            .param(param)
-            .map_or(p.size.span(), |v| v.span());
+        let at = match param {
+            "x" => p.size.get_ref().x.as_ref().map(|v| v.span()),
+            _ => p.size.get_ref().param(param).map(|v| v.span()),
+        }
+        .unwrap_or(p.size.span());
         let (a_min, a_max) = phase.aspect_ratio.support();
+        let shapes = match &phase.triaxial {
+            None => format!("aspect ratios in [{a_min}, {a_max}]"),
+            Some(t) => format!("shape ratios down to b/a · c/a = {}", t.min_product()),
+        };
         return Err(src.invalid(
             format!("{key}.size.{param}"),
             at,
             format!(
-                "the longest grain ({longest} end to end, with aspect ratios in [{a_min}, {a_max}]) \
-                 does not fit in the box, whose shortest side is {side}"
+                "the longest grain ({longest} end to end, with {shapes}) does not fit in the \
+                 box, whose shortest side is {side}"
             ),
         ));
     }
