@@ -2,7 +2,7 @@
 //! `c/b` of the packed grains against their laws, and for von Mises–Fisher phases the
 //! angle of the first axis to the mean direction and the spin about it.
 
-use super::statistics::{quantity, QuantityStatistics};
+use super::quantity::{quantity, QuantityStatistics};
 use crate::contact::rotation_column;
 use crate::laws::{ks_distance, Moments, VonMisesCdf};
 use crate::packing::PackedGrain;

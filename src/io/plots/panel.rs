@@ -170,6 +170,24 @@ pub(super) fn rows(
                 packed: grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect(),
                 voxel: voxel_values(|s| Some(s.aspect_ratio)),
             };
+            // Triaxial phases: b/a (a2/a1) against its law in place of a1/a2; the
+            // summary has c/a and c/b too.
+            let aspect = match &phase.triaxial {
+                None => aspect,
+                Some(t) => Panel {
+                    title: "shape ratio b/a".into(),
+                    x_label: "shape ratio b/a = a2/a1 (dimensionless)",
+                    y_label: "probability density",
+                    law: law_name(&t.b_over_a),
+                    law_moments: law_moments(&t.b_over_a),
+                    target: distribution_target(&t.b_over_a),
+                    packed: grains
+                        .iter()
+                        .map(|g| g.semi_axes[1] / g.semi_axes[0])
+                        .collect(),
+                    voxel: None,
+                },
+            };
             let mut angle = angle_panel(&phase.orientation, &grains);
             angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
             Row {

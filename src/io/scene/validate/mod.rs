@@ -1,9 +1,12 @@
 //! Raw scene → [`Scene`]: every value checked, every default filled in, every error
 //! located.
 
+mod axis;
+mod fisher;
 mod grain;
 mod output;
-mod shape;
+mod table;
+mod triaxial;
 
 use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
@@ -108,7 +111,7 @@ fn phase(
         size: size.clone(),
         aspect_ratio,
         orientation,
-        triaxial: shape::triaxial(src, &key, p)?,
+        triaxial: triaxial::triaxial(src, &key, p)?,
     };
 
     let (longest, side) = (phase.max_length(), domain.min_side());

@@ -1,0 +1,39 @@
+//! A grain quantity's target law against the packed grains' values: moments and KS
+//! distance, shared by the phase statistics and the shape statistics.
+
+use crate::laws::{ks_distance, ks_distance_to_value, Distribution, Moments};
+use serde::Serialize;
+
+/// Relative rounding of a diameter `2 (a1 a2 a3)^{1/3}` or aspect ratio `a1/a2`
+/// recomputed from packed semi-axes: the sampler's `a2 = d/(2 α^{1/3})`, `a1 = α a2`,
+/// the loop's scaling and the recomputation are under ten operations, each within
+/// `ε/2`; `16 ε` bounds their sum. Against a constant law, a value within it of the
+/// constant counts as equal to it.
+const ROUNDING: f64 = 16.0 * f64::EPSILON;
+
+/// A grain quantity's target law against the packed grains.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct QuantityStatistics {
+    /// Mean and standard deviation of the target (truncated) law.
+    pub target: Moments,
+    /// Mean and standard deviation of the packed grains; `null` without grains.
+    pub achieved: Option<Moments>,
+    /// Kolmogorov–Smirnov distance between the packed grains and the target law;
+    /// `null` without grains.
+    pub ks_distance: Option<f64>,
+}
+
+/// A quantity's law against its sample.
+pub(crate) fn quantity(law: &Distribution, sample: &[f64]) -> QuantityStatistics {
+    QuantityStatistics {
+        target: Moments {
+            mean: law.mean(),
+            std: law.std(),
+        },
+        achieved: Moments::of_sample(sample),
+        ks_distance: match *law {
+            Distribution::Constant { value } => ks_distance_to_value(sample, value, ROUNDING),
+            _ => ks_distance(sample, |x| law.cdf(x)),
+        },
+    }
+}
