@@ -190,3 +190,67 @@ fn bad_shapes_and_tables_exit_2_name_the_key_and_write_nothing() {
         assert_eq!(files_in(&dir), ["bad.toml"], "{key}");
     }
 }
+
+#[test]
+fn measured_table_packs_exactly_its_grains_and_round_trips() {
+    let dir = support::files::scratch("shapes", "measured");
+    let summary = pack_and_check(&dir, &repo("configs/measured_grains.toml"), true, 0);
+    let table = read_grains(Path::new(&repo("configs/measured_grains.csv")));
+    let packed = read_grains(&dir.join("out/grains.csv"));
+    assert_eq!(summary["grains"], 200);
+    // Exactly the table's grains, shapes and orientations bit for bit (grains are
+    // written with 17 digits and orientations kept: no rotation).
+    assert_eq!(table.len(), packed.len());
+    for (t, p) in table.iter().zip(&packed) {
+        assert_eq!(t.semi_axes, p.semi_axes);
+        assert_eq!(t.rotation, p.rotation);
+    }
+    // The box follows from target_fraction: Σ volumes / (Lx Ly Lz) = 0.5, to the
+    // rounding of a sum of 200 volumes and a cube root (1e-12 relative).
+    let fraction = summary["packing_fraction"].as_f64().unwrap();
+    assert!((fraction - 0.5).abs() < 1e-12, "{fraction}");
+
+    // Round trip: the packed grains.csv, read back and drawn from with replacement.
+    std::fs::write(
+        dir.join("again.toml"),
+        "seed = 9\ngrains = 150\n[box]\nsize = [50.0, 50.0, 50.0]\n[[phase]]\n\
+         measured = { file = \"out/grains.csv\", phase = 0 }\n",
+    )
+    .unwrap();
+    let run = pack(&dir, &["again.toml", "--out", "again", "--quiet"]);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let again = read_grains(&dir.join("again/grains.csv"));
+    assert_eq!(again.len(), 150);
+    for g in &again {
+        assert!(table.iter().any(|t| t.semi_axes == g.semi_axes), "{g:?}");
+    }
+}
+
+#[test]
+fn bad_measured_tables_name_line_and_column_and_write_nothing() {
+    let scene = "seed = 1\ngrains = 3\n[box]\nsize = [40.0, 40.0, 40.0]\n[[phase]]\n\
+                 measured = { file = \"t.csv\" }\n";
+    for (csv, want) in [
+        ("d\n3.0\n-1.0\n", "t.csv:3: column d = -1"),
+        ("a1,a2,a3\n3,2,1\n3,2,abc\n", "t.csv:3: column a3 = abc"),
+        (
+            "a1,a2,a3,qw,qx,qy,qz\n3,2,1,0.9,0,0,0\n",
+            "t.csv:2: column qw",
+        ),
+        ("size\n3\n", "t.csv:1: column (header)"),
+    ] {
+        let dir = support::files::scratch("shapes", "badcsv");
+        std::fs::write(dir.join("s.toml"), scene).unwrap();
+        std::fs::write(dir.join("t.csv"), csv).unwrap();
+        let run = pack(&dir, &["s.toml", "--out", "out"]);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{err}");
+        assert!(err.contains(want), "want {want} in: {err}");
+        assert_eq!(files_in(&dir), ["s.toml", "t.csv"]);
+    }
+}

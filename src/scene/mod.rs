@@ -26,6 +26,7 @@
 mod domain;
 mod fisher;
 mod grain;
+mod measured;
 mod orientation;
 mod output;
 mod params;
@@ -34,6 +35,7 @@ mod shape;
 pub use domain::{Boundary, Domain};
 pub use fisher::{perpendicular, FisherOrientation, Spin};
 pub use grain::{aspect_ratio, GrainSpec, SampleError};
+pub use measured::{Measured, MeasuredGrain, MeasuredMode};
 pub use orientation::{tilt_angle, tilt_angle_of, Axis, Orientation};
 pub use output::{
     proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
@@ -101,6 +103,9 @@ pub struct Phase {
     /// For triaxial grains, the laws of `b/a` and `c/a` (or `c/b`) that replace
     /// [`Phase::aspect_ratio`]; `None` for spheroids.
     pub triaxial: Option<Triaxial>,
+    /// Grains from a measured table (`[phase.measured]`); `None` for drawn phases.
+    /// [`Phase::size`] is then the table's empirical law of diameters.
+    pub measured: Option<Measured>,
 }
 
 impl Phase {
@@ -117,6 +122,13 @@ impl Phase {
     /// smallest `βγ` ([`Triaxial::min_product`]).
     pub fn max_length(&self) -> f64 {
         let (_, d_max) = self.size.support();
+        if let Some(m) = self.measured.as_ref().filter(|m| m.has_semi_axes()) {
+            return m
+                .grains
+                .iter()
+                .filter_map(|g| g.length())
+                .fold(0.0, f64::max);
+        }
         if let Some(t) = &self.triaxial {
             return d_max / t.min_product().cbrt();
         }

@@ -44,12 +44,24 @@ pub(crate) enum RawBoundary {
 pub(crate) struct RawPhase {
     pub name: Opt<String>,
     pub share: Opt<f64>,
-    pub size: Spanned<RawDistribution>,
+    /// Required unless `measured` gives the grains.
+    pub size: Opt<RawDistribution>,
     pub aspect_ratio: Opt<RawDistribution>,
     pub b_over_a: Opt<RawDistribution>,
     pub c_over_a: Opt<RawDistribution>,
     pub c_over_b: Opt<RawDistribution>,
     pub orientation: Opt<RawOrientation>,
+    pub measured: Opt<RawMeasured>,
+}
+
+/// `[phase.measured]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMeasured {
+    pub file: Spanned<String>,
+    pub mode: Opt<String>,
+    /// An index or a name: checked by validation.
+    pub phase: Opt<toml::Value>,
 }
 
 /// `[phase.size]` and `[phase.aspect_ratio]`: every family's keys, each optional;
