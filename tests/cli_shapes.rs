@@ -85,6 +85,7 @@ fn rolled_pancakes_pack_without_overlaps_and_meet_their_laws() {
     for key in [
         &p["diameter"]["ks_distance"],
         &p["shape"]["b_over_a"]["ks_distance"],
+        &p["aspect_ratio"]["ks_distance"],
         &p["shape"]["c_over_a"]["ks_distance"],
         &p["orientation_3d"]["axis_angle_deg"]["ks_distance"],
         &p["orientation_3d"]["spin_deg"]["ks_distance"],

@@ -241,7 +241,7 @@ fn missing_required_keys_name_their_table() {
     let without_size = "grains = 1\n[box]\nsize = [9, 9, 9]\n[[phase]]\nname = \"a\"\n";
     assert_starts(
         &error(without_size),
-        "scene.toml:4:1: phase[0]: missing field `size`",
+        "scene.toml:4:1: phase[0].size = (missing): each phase needs size (a law) or [phase.measured]",
     );
     assert_starts(
         &error("grains = 1\n"),

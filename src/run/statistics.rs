@@ -180,7 +180,7 @@ fn grain_statistics(
     };
     (
         quantity(&phase.size, &diameters),
-        quantity(&phase.aspect_ratio, &aspects),
+        super::shape_statistics::aspect_ratio(phase, &aspects),
         tilt_angle_deg,
     )
 }
