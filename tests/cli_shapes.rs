@@ -210,6 +210,8 @@ fn measured_table_packs_exactly_its_grains_and_round_trips() {
     // rounding of a sum of 200 volumes and a cube root (1e-12 relative).
     let fraction = summary["packing_fraction"].as_f64().unwrap();
     assert!((fraction - 0.5).abs() < 1e-12, "{fraction}");
+    // The packed diameters are the table's: KS distance 0 against its step CDF.
+    assert_eq!(summary["phases"][0]["diameter"]["ks_distance"], 0.0);
 
     // Round trip: the packed grains.csv, read back and drawn from with replacement.
     std::fs::write(
