@@ -241,7 +241,7 @@ fn missing_required_keys_name_their_table() {
     let without_size = "grains = 1\n[box]\nsize = [9, 9, 9]\n[[phase]]\nname = \"a\"\n";
     assert_starts(
         &error(without_size),
-        "scene.toml:4:1: phase[0]: missing field `size`",
+        "scene.toml:4:1: phase[0].size = (missing): each phase needs size (a law) or [phase.measured]",
     );
     assert_starts(
         &error("grains = 1\n"),
@@ -493,8 +493,8 @@ fn sampled_statistics_match_the_requested_distributions() {
     let alpha: Vec<f64> = grains.iter().map(|g| g.aspect_ratio).collect();
     let theta: Vec<f64> = grains.iter().map(|g| g.tilt.unwrap()).collect();
     for (name, xs, law) in [
-        ("diameter", &d, phase.size),
-        ("aspect", &alpha, phase.aspect_ratio),
+        ("diameter", &d, phase.size.clone()),
+        ("aspect", &alpha, phase.aspect_ratio.clone()),
     ] {
         let ks = ks_distance(xs.clone(), |x| law.cdf(x));
         assert!(ks < critical, "{name}: KS {ks} ≥ {critical}");

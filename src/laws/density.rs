@@ -12,7 +12,8 @@ impl Distribution {
     ///
     /// Normal: `φ((x − mean)/std) / (std P)`. Lognormal:
     /// `φ(ln((x − loc)/scale)/σ) / (σ (x − loc) P)`. Uniform: `1/(max − min)`.
-    /// A constant law has no density: its mass is a point at `value`, so this returns
+    /// A table's density is exact per interval (see [`TableLaw`](super::TableLaw)).
+    /// A measured (empirical) law has no density: 0. A constant law has no density: its mass is a point at `value`, so this returns
     /// `+∞` at `value` and 0 elsewhere.
     ///
     /// ```
@@ -44,6 +45,9 @@ impl Distribution {
                 let z = ((x - loc) / scale).ln() / sigma;
                 normal_pdf(z) / (sigma * (x - loc) * self.accepted_mass())
             }
+            Self::Table(ref t) => t.pdf(x),
+            // Point masses at the measured values: no density, as for a constant.
+            Self::Empirical(_) => 0.0,
         }
     }
 }

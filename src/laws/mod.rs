@@ -8,9 +8,11 @@
 
 mod density;
 mod distribution;
+mod fisher;
 mod sample;
 mod special;
 mod stats;
+mod table;
 mod von_mises;
 mod von_mises_cdf;
 
@@ -18,7 +20,9 @@ mod von_mises_cdf;
 pub(crate) use distribution::sample_laws;
 pub use distribution::Distribution;
 pub(crate) use distribution::Invalid;
+pub use fisher::Fisher;
 pub use stats::{ks_distance, ks_distance_to_value, Moments};
+pub use table::{EmpiricalLaw, TableBasis, TableError, TableInterpolation, TableLaw};
 pub use von_mises::{VonMises, MAX_KAPPA};
 pub use von_mises_cdf::VonMisesCdf;
 

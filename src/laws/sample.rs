@@ -29,6 +29,9 @@ impl Distribution {
             } => (0..MAX_DRAWS)
                 .map(|_| loc + scale * (sigma * rng.sample::<f64, _>(StandardNormal)).exp())
                 .find(|x| (min..=max).contains(x)),
+            // Inverse CDF: one uniform per value.
+            Self::Table(ref t) => Some(t.quantile(rng.random::<f64>())),
+            Self::Empirical(ref e) => Some(e.sorted[rng.random_range(0..e.sorted.len())]),
         }
     }
 }

@@ -17,9 +17,13 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod quantity;
+mod shape_statistics;
 mod statistics;
 
-pub use statistics::{PhaseStatistics, QuantityStatistics, Share, Statistics, TurnStatistics};
+pub use quantity::QuantityStatistics;
+pub use shape_statistics::{OrientationStatistics, RatioStatistics, ShapeStatistics};
+pub use statistics::{PhaseStatistics, Share, Statistics, TurnStatistics};
 
 use crate::packing::{pack, Job, PackError, Packing, Progress, Tuning, Verification};
 use crate::scene::{GrainSpec, SampleError, Scene};

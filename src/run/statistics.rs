@@ -2,8 +2,9 @@
 //! shares, sizes, shapes and tilt angles, and how far grains turned. `summary.json`
 //! and the closing report are these values.
 
+use super::quantity::{quantity, QuantityStatistics};
 use crate::contact::{ellipsoid_volume, equivalent_diameter};
-use crate::laws::{ks_distance, ks_distance_to_value, Distribution, Moments, VonMisesCdf};
+use crate::laws::{ks_distance, Moments, VonMisesCdf};
 use crate::packing::{sorted_turns, PackedGrain, Packing};
 use crate::scene::{aspect_ratio, tilt_angle, GrainCount, GrainSpec, Orientation, Phase, Scene};
 use serde::Serialize;
@@ -58,6 +59,8 @@ impl Statistics {
                     diameter,
                     aspect_ratio,
                     tilt_angle_deg,
+                    shape: super::shape_statistics::shape(phase, &grains),
+                    orientation_3d: super::shape_statistics::orientation(phase, &grains),
                 }
             })
             .collect();
@@ -80,13 +83,6 @@ impl Statistics {
         }
     }
 }
-
-/// Relative rounding of a diameter `2 (a1 a2 a3)^{1/3}` or aspect ratio `a1/a2`
-/// recomputed from packed semi-axes: the sampler's `a2 = d/(2 α^{1/3})`, `a1 = α a2`,
-/// the loop's scaling and the recomputation are under ten operations, each within
-/// `ε/2`; `16 ε` bounds their sum. Against a constant law, a value within it of the
-/// constant counts as equal to it.
-const ROUNDING: f64 = 16.0 * f64::EPSILON;
 
 /// `packing.rotation` and `packing.max_turn` as the loop ran them, and the turns of the
 /// written grains from their drawn orientations.
@@ -111,18 +107,6 @@ pub struct Share {
     pub achieved: f64,
 }
 
-/// A grain quantity's target law against the packed grains.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct QuantityStatistics {
-    /// Mean and standard deviation of the target (truncated) law.
-    pub target: Moments,
-    /// Mean and standard deviation of the packed grains; `null` without grains.
-    pub achieved: Option<Moments>,
-    /// Kolmogorov–Smirnov distance between the packed grains and the target law;
-    /// `null` without grains.
-    pub ks_distance: Option<f64>,
-}
-
 /// One phase: its shares and its grain statistics.
 #[derive(Debug, Clone, Serialize)]
 pub struct PhaseStatistics {
@@ -143,6 +127,12 @@ pub struct PhaseStatistics {
     /// the plane normal to the tilt axis, recovered from the packed quaternion.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tilt_angle_deg: Option<QuantityStatistics>,
+    /// For triaxial phases: the three semi-axis ratios against their laws.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape: Option<super::shape_statistics::ShapeStatistics>,
+    /// For `kind = "fisher"`: the first axis's angle to the mean direction and the spin.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub orientation_3d: Option<super::shape_statistics::OrientationStatistics>,
 }
 
 /// `a / b`, or 0 when `b` is 0 (no grains).
@@ -190,24 +180,9 @@ fn grain_statistics(
     };
     (
         quantity(&phase.size, &diameters),
-        quantity(&phase.aspect_ratio, &aspects),
+        super::shape_statistics::aspect_ratio(phase, &aspects),
         tilt_angle_deg,
     )
-}
-
-/// A quantity's law against its sample.
-fn quantity(law: &Distribution, sample: &[f64]) -> QuantityStatistics {
-    QuantityStatistics {
-        target: Moments {
-            mean: law.mean(),
-            std: law.std(),
-        },
-        achieved: Moments::of_sample(sample),
-        ks_distance: match *law {
-            Distribution::Constant { value } => ks_distance_to_value(sample, value, ROUNDING),
-            _ => ks_distance(sample, |x| law.cdf(x)),
-        },
-    }
 }
 
 #[cfg(test)]

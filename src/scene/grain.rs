@@ -1,6 +1,8 @@
 //! Drawing grains from a scene: which phase, what size, what shape, which way round.
 
-use super::{GrainCount, Orientation, Phase, Scene, MAX_GRAINS};
+use super::{
+    triaxial_semi_axes, GrainCount, Measured, MeasuredGrain, Orientation, Phase, Scene, MAX_GRAINS,
+};
 use crate::laws::MAX_DRAWS;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -17,6 +19,10 @@ pub const CRYSTAL_STREAM: u64 = 1;
 /// `a2 = a3 = (d/2) α^{−1/3}` and `a1 = α a2`, so `a1 a2 a3 = (d/2)³`. `α > 1` is prolate
 /// (a needle along the first axis), `α < 1` oblate (a platelet whose normal is the
 /// first axis). Semi-axis `k` lies along column `k` of the rotation of `quaternion`.
+///
+/// A triaxial grain (a phase with [`Triaxial`](super::Triaxial) laws) has
+/// `a1 ≥ a2 ≥ a3` from its ratios `b/a`, `c/a` at the same volume
+/// ([`triaxial_semi_axes`]), and `aspect_ratio = a1/a2`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GrainSpec {
     /// Index of the grain's phase in [`Scene::phases`].
@@ -94,7 +100,8 @@ pub enum SampleError {
         phase: usize,
         /// Phase name.
         name: String,
-        /// `"equivalent diameter"`, `"aspect ratio"` or `"tilt angle"`.
+        /// `"equivalent diameter"`, `"aspect ratio"`, `"shape ratio b/a"` (`c/a`, `c/b`),
+        /// `"tilt angle"` or `"orientation angle"`.
         quantity: &'static str,
         /// Draws made.
         draws: usize,
@@ -121,10 +128,28 @@ impl Phase {
             quantity,
             draws: MAX_DRAWS,
         };
+        if let Some(m) = &self.measured {
+            return self
+                .draw_measured(index, m, rng)
+                .ok_or_else(|| rejected("measured grain's shape or orientation"));
+        }
         let d = self
             .size
             .sample(rng)
             .ok_or_else(|| rejected("equivalent diameter"))?;
+        if let Some(shape) = &self.triaxial {
+            let (beta, gamma) = shape.sample(rng).map_err(rejected)?;
+            let (q, _) = self
+                .orientation
+                .sample(rng)
+                .ok_or_else(|| rejected("orientation angle"))?;
+            let semi_axes = triaxial_semi_axes(d, beta, gamma);
+            return Ok(GrainSpec {
+                semi_axes,
+                aspect_ratio: 1.0 / beta,
+                ..GrainSpec::new(index, d, 1.0, q, None)
+            });
+        }
         let alpha = self
             .aspect_ratio
             .sample(rng)
@@ -144,7 +169,89 @@ impl Phase {
     }
 }
 
+impl Phase {
+    /// The grain of this phase made from measured grain `g`: its semi-axes and
+    /// orientation where the table gives them, else drawn from the phase's laws (in
+    /// the order of [`Phase::sample_grain`]: shape, then orientation).
+    pub(crate) fn measured_grain<R: Rng + ?Sized>(
+        &self,
+        index: usize,
+        g: &MeasuredGrain,
+        rng: &mut R,
+    ) -> Option<GrainSpec> {
+        let mut spec = match g.semi_axes {
+            Some(axes) => GrainSpec {
+                semi_axes: axes,
+                aspect_ratio: axes[0] / axes[1],
+                ..GrainSpec::new(index, g.diameter, 1.0, [1.0, 0.0, 0.0, 0.0], None)
+            },
+            None => {
+                // The shape law at the measured diameter.
+                let mut shape_only = self.clone();
+                shape_only.measured = None;
+                shape_only.size = crate::laws::Distribution::Constant { value: g.diameter };
+                shape_only.orientation = Orientation::Fixed {
+                    quaternion: [1.0, 0.0, 0.0, 0.0],
+                };
+                shape_only.sample_grain(index, rng).ok()?
+            }
+        };
+        let (q, tilt) = match g.quaternion {
+            Some(q) => (q, None),
+            None => self.orientation.sample(rng)?,
+        };
+        spec.quaternion = q;
+        spec.tilt = tilt;
+        if let Orientation::Tilt { axis, .. } = self.orientation {
+            spec.turn_axis = Some(axis.unit());
+        }
+        Some(spec)
+    }
+
+    /// Draws one grain of a `draw` table: a row uniformly at random, then
+    /// [`Phase::measured_grain`].
+    pub(crate) fn draw_measured<R: Rng + ?Sized>(
+        &self,
+        index: usize,
+        measured: &Measured,
+        rng: &mut R,
+    ) -> Option<GrainSpec> {
+        let row = rng.random_range(0..measured.grains.len());
+        self.measured_grain(index, &measured.grains[row], rng)
+    }
+}
+
 impl Scene {
+    /// The grains of a scene whose phases all take exactly their measured grains
+    /// (validation makes it all or none): each phase's rows in table order, phase after
+    /// phase. `None` for other scenes.
+    fn exact_grains<R: Rng + ?Sized>(
+        &self,
+        rng: &mut R,
+    ) -> Result<Option<Vec<GrainSpec>>, SampleError> {
+        use super::MeasuredMode;
+        let exact = |p: &Phase| matches!(&p.measured, Some(m) if m.mode == MeasuredMode::Exact);
+        if self.phases.is_empty() || !self.phases.iter().all(exact) {
+            return Ok(None);
+        }
+        let mut grains = Vec::new();
+        for (index, phase) in self.phases.iter().enumerate() {
+            let m = phase.measured.as_ref().expect("checked above");
+            for g in m.grains.iter() {
+                let spec = phase.measured_grain(index, g, rng).ok_or_else(|| {
+                    SampleError::TooManyRejections {
+                        phase: index,
+                        name: phase.name.clone(),
+                        quantity: "measured grain's shape or orientation",
+                        draws: MAX_DRAWS,
+                    }
+                })?;
+                grains.push(spec);
+            }
+        }
+        Ok(Some(grains))
+    }
+
     /// The scene's random generator: ChaCha8 seeded with [`Scene::seed`], whose stream
     /// is fixed by its algorithm, so a seed gives the same grains on every machine and
     /// with any number of threads.
@@ -180,6 +287,9 @@ impl Scene {
         &self,
         rng: &mut R,
     ) -> Result<Vec<GrainSpec>, SampleError> {
+        if let Some(grains) = self.exact_grains(rng)? {
+            return Ok(grains);
+        }
         let done = |count: usize, volume: f64| match self.count {
             GrainCount::Exactly(n) => count >= n,
             GrainCount::Fraction(f) => volume >= f * self.domain.volume(),

@@ -26,10 +26,13 @@
 mod crystal;
 mod domain;
 mod elastic;
+mod fisher;
 mod grain;
+mod measured;
 mod orientation;
 mod output;
 mod params;
+mod shape;
 
 pub use crystal::{
     euler_to_quaternion, fibre_angle, fibre_angle_cdf, quaternion_to_euler, random_angle_cdf,
@@ -37,7 +40,9 @@ pub use crystal::{
 };
 pub use domain::{Boundary, Domain};
 pub use elastic::Elastic;
+pub use fisher::{perpendicular, FisherOrientation, Spin};
 pub use grain::{aspect_ratio, GrainSpec, SampleError, CRYSTAL_STREAM};
+pub use measured::{Measured, MeasuredGrain, MeasuredMode};
 pub use orientation::{tilt_angle, tilt_angle_of, Axis, Orientation};
 pub use output::{
     proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
@@ -45,6 +50,7 @@ pub use output::{
     MIN_VTK_RESOLUTION,
 };
 pub use params::{PackingParams, Rotation};
+pub use shape::{triaxial_semi_axes, ThirdRatio, Triaxial};
 
 use crate::laws::Distribution;
 use std::f64::consts::PI;
@@ -121,6 +127,12 @@ pub struct Phase {
     /// The phase's DAMASK `phase` entry (`[phase.damask]`), passed through to
     /// `material.yaml` as written; `None` for the documented placeholder.
     pub damask: Option<toml::Table>,
+    /// For triaxial grains, the laws of `b/a` and `c/a` (or `c/b`) that replace
+    /// [`Phase::aspect_ratio`]; `None` for spheroids.
+    pub triaxial: Option<Triaxial>,
+    /// Grains from a measured table (`[phase.measured]`); `None` for drawn phases.
+    /// [`Phase::size`] is then the table's empirical law of diameters.
+    pub measured: Option<Measured>,
 }
 
 impl Phase {
@@ -132,8 +144,21 @@ impl Phase {
     /// The longest any grain can be end to end: `d_max · max(α_max^{2/3}, α_min^{−1/3})`
     /// (the first axis `2a1 = d α^{2/3}` of a prolate grain, the equatorial diameter
     /// `2a2 = d α^{−1/3}` of an oblate one).
+    ///
+    /// Triaxial grains: the first axis `2a = d (βγ)^{−1/3}` at the largest `d` and the
+    /// smallest `βγ` ([`Triaxial::min_product`]).
     pub fn max_length(&self) -> f64 {
         let (_, d_max) = self.size.support();
+        if let Some(m) = self.measured.as_ref().filter(|m| m.has_semi_axes()) {
+            return m
+                .grains
+                .iter()
+                .filter_map(|g| g.length())
+                .fold(0.0, f64::max);
+        }
+        if let Some(t) = &self.triaxial {
+            return d_max / t.min_product().cbrt();
+        }
         let (a_min, a_max) = self.aspect_ratio.support();
         d_max * a_max.powf(2.0 / 3.0).max(a_min.powf(-1.0 / 3.0))
     }

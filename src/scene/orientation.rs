@@ -5,6 +5,7 @@
 //! grain's first axis (column 0) is its axis of revolution (see
 //! [`GrainSpec`](super::GrainSpec)).
 
+use super::fisher::FisherOrientation;
 use crate::contact::rotation_column;
 use crate::laws::VonMises;
 use rand::Rng;
@@ -61,6 +62,9 @@ pub enum Orientation {
         /// The law of `θ` (radians).
         angle: VonMises,
     },
+    /// The first axis by von Mises–Fisher about a mean direction, then a spin about it
+    /// (`kind = "fisher"`, see [`FisherOrientation`]).
+    Fisher(FisherOrientation),
 }
 
 impl Orientation {
@@ -71,11 +75,13 @@ impl Orientation {
             Self::Fixed { .. } => "fixed",
             Self::Aligned { .. } => "aligned",
             Self::Tilt { .. } => "tilt",
+            Self::Fisher(_) => "fisher",
         }
     }
 
     /// Draws an orientation: the quaternion, and the tilt angle `θ` (radians) for
-    /// [`Orientation::Tilt`]. `None` if the tilt angle's rejection sampling gave up.
+    /// [`Orientation::Tilt`]. `None` if the tilt (or spin) angle's rejection sampling
+    /// gave up.
     pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> Option<([f64; 4], Option<f64>)> {
         match *self {
             Self::Random => Some((random_quaternion(rng), None)),
@@ -85,6 +91,7 @@ impl Orientation {
                 let theta = angle.sample(rng)?;
                 Some((tilt_quaternion(axis, theta), Some(theta)))
             }
+            Self::Fisher(law) => Some((law.sample(rng)?, None)),
         }
     }
 }

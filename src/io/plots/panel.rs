@@ -170,6 +170,24 @@ pub(super) fn rows(
                 packed: grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect(),
                 voxel: voxel_values(|s| Some(s.aspect_ratio)),
             };
+            // Triaxial phases: b/a (a2/a1) against its law in place of a1/a2; the
+            // summary has c/a and c/b too.
+            let aspect = match &phase.triaxial {
+                None => aspect,
+                Some(t) => Panel {
+                    title: "shape ratio b/a".into(),
+                    x_label: "shape ratio b/a = a2/a1 (dimensionless)",
+                    y_label: "probability density",
+                    law: law_name(&t.b_over_a),
+                    law_moments: law_moments(&t.b_over_a),
+                    target: distribution_target(&t.b_over_a),
+                    packed: grains
+                        .iter()
+                        .map(|g| g.semi_axes[1] / g.semi_axes[0])
+                        .collect(),
+                    voxel: None,
+                },
+            };
             let mut angle = angle_panel(&phase.orientation, &grains);
             angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
             Row {
@@ -200,9 +218,37 @@ fn distribution_target(law: &Distribution) -> Target {
             min.max(loc + scale * (-CURVE_SIGMAS * sigma).exp()),
             max.min(loc + scale * (CURVE_SIGMAS * sigma).exp()),
         ),
+        Distribution::Table(_) => (min, max),
+        Distribution::Empirical(ref e) => return Target::Curve(histogram_curve(&e.sorted)),
     };
     let (lo, hi) = if lo < hi { (lo, hi) } else { (min, max) };
     Target::Curve(curve(lo, hi, |x| law.pdf(x)))
+}
+
+/// Bins of the density drawn for a measured (empirical) law.
+const EMPIRICAL_BINS: usize = 24;
+
+/// The histogram density of sorted `values` as a step curve, for a measured law (its
+/// point masses have no density to draw).
+fn histogram_curve(values: &[f64]) -> Vec<(f64, f64)> {
+    let (lo, hi) = (values[0], values[values.len() - 1]);
+    if !(hi > lo) {
+        return vec![(lo, 0.0), (hi, 0.0)];
+    }
+    let width = (hi - lo) / EMPIRICAL_BINS as f64;
+    let mut counts = [0usize; EMPIRICAL_BINS];
+    for v in values {
+        counts[(((v - lo) / width) as usize).min(EMPIRICAL_BINS - 1)] += 1;
+    }
+    let mut points = vec![(lo, 0.0)];
+    for (k, c) in counts.iter().enumerate() {
+        let h = *c as f64 / (values.len() as f64 * width);
+        let x0 = lo + k as f64 * width;
+        points.push((x0, h));
+        points.push((x0 + width, h));
+    }
+    points.push((hi, 0.0));
+    points
 }
 
 /// The window of a tilt law's curve (radians): its window, clipped to
@@ -290,6 +336,31 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
                 packed: grains
                     .iter()
                     .map(|g| tilt_angle(g.quaternion, axis, &angle).to_degrees())
+                    .collect(),
+                voxel: None,
+            }
+        }
+        Orientation::Fisher(law) => {
+            let (mean, std) = law.fisher.angle_moments();
+            let hi = (CURVE_SIGMAS / law.fisher.kappa.sqrt()).min(PI);
+            Panel {
+                title: "first axis to its mean direction".into(),
+                x_label: "angle of the first axis to the mean (degrees)",
+                y_label: "probability density (1/degree)",
+                law: format!(
+                    "target von Mises\u{2013}Fisher, \u{3ba} = {}",
+                    law.fisher.kappa
+                ),
+                law_moments: Some(degrees(Moments { mean, std })),
+                target: Target::Curve(curve(0.0, hi.to_degrees(), |t| {
+                    law.fisher.angle_pdf(t.to_radians()) * per_degree
+                })),
+                packed: grains
+                    .iter()
+                    .map(|g| {
+                        law.axis_angle(rotation_column(g.quaternion, 0))
+                            .to_degrees()
+                    })
                     .collect(),
                 voxel: None,
             }

@@ -87,12 +87,27 @@ pub(crate) enum RawBoundary {
 pub(crate) struct RawPhase {
     pub name: Opt<String>,
     pub share: Opt<f64>,
-    pub size: Spanned<RawDistribution>,
+    /// Required unless `measured` gives the grains.
+    pub size: Opt<RawDistribution>,
     pub aspect_ratio: Opt<RawDistribution>,
+    pub b_over_a: Opt<RawDistribution>,
+    pub c_over_a: Opt<RawDistribution>,
+    pub c_over_b: Opt<RawDistribution>,
     pub orientation: Opt<RawOrientation>,
     pub texture: Opt<RawTexture>,
     pub elastic: Opt<RawElastic>,
     pub damask: Opt<toml::Table>,
+    pub measured: Opt<RawMeasured>,
+}
+
+/// `[phase.measured]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMeasured {
+    pub file: Spanned<String>,
+    pub mode: Opt<String>,
+    /// An index or a name: checked by validation.
+    pub phase: Opt<toml::Value>,
 }
 
 /// `[phase.size]` and `[phase.aspect_ratio]`: every family's keys, each optional;
@@ -109,6 +124,11 @@ pub(crate) struct RawDistribution {
     pub loc: Opt<f64>,
     pub min: Opt<f64>,
     pub max: Opt<f64>,
+    /// `distribution = "table"`: points, fractions, basis, interpolation.
+    pub x: Opt<Vec<f64>>,
+    pub cdf: Opt<Vec<f64>>,
+    pub by: Opt<String>,
+    pub interpolation: Opt<String>,
 }
 
 impl RawDistribution {
@@ -143,6 +163,7 @@ pub(crate) enum RawFamily {
     Uniform,
     Normal,
     LogNormal,
+    Table,
 }
 
 /// `[phase.orientation]`: every kind's keys, each optional.
@@ -157,6 +178,11 @@ pub(crate) struct RawOrientation {
     pub kappa: Opt<f64>,
     pub min: Opt<f64>,
     pub max: Opt<f64>,
+    /// `kind = "fisher"`: `"x"`, `"y"`, `"z"` or `[x, y, z]`.
+    pub direction: Opt<toml::Value>,
+    pub spin_reference: Opt<toml::Value>,
+    pub spin_kappa: Opt<f64>,
+    pub spin_mean: Opt<f64>,
 }
 
 /// `orientation.kind`.
@@ -167,6 +193,7 @@ pub(crate) enum RawKind {
     Fixed,
     Aligned,
     Tilt,
+    Fisher,
 }
 
 /// `[packing]`.

@@ -2,6 +2,7 @@
 //! ratio), truncated to cutoffs and sampled by rejection.
 
 use super::special::{normal_mass, normal_pdf};
+use super::table::{EmpiricalLaw, TableLaw};
 use super::MIN_ACCEPTED_MASS;
 
 /// A distribution of a positive quantity, truncated to `[min, max]`.
@@ -17,7 +18,7 @@ use super::MIN_ACCEPTED_MASS;
 /// assert_eq!(d.support(), (6.0, 16.0));
 /// assert!(d.mean() > 6.0 && d.mean() < 16.0);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Distribution {
     /// Always `value`.
     Constant {
@@ -57,6 +58,11 @@ pub enum Distribution {
         /// Upper cutoff.
         max: f64,
     },
+    /// A tabulated CDF, by number or by volume (`distribution = "table"`), cut at the
+    /// table's ends.
+    Table(TableLaw),
+    /// The values of a measured grain table, each with probability `1/n`.
+    Empirical(EmpiricalLaw),
 }
 
 /// A parameter that makes a distribution impossible, and why.
@@ -85,6 +91,8 @@ impl Distribution {
             Self::Uniform { .. } => "uniform",
             Self::Normal { .. } => "normal",
             Self::LogNormal { .. } => "lognormal",
+            Self::Table(_) => "table",
+            Self::Empirical(_) => "measured",
         }
     }
 
@@ -95,6 +103,8 @@ impl Distribution {
             Self::Uniform { min, max }
             | Self::Normal { min, max, .. }
             | Self::LogNormal { min, max, .. } => (min, max),
+            Self::Table(ref t) => t.support(),
+            Self::Empirical(ref e) => e.support(),
         }
     }
 
@@ -102,7 +112,9 @@ impl Distribution {
     /// acceptance rate of rejection sampling (1 for `constant` and `uniform`).
     pub fn accepted_mass(&self) -> f64 {
         match *self {
-            Self::Constant { .. } | Self::Uniform { .. } => 1.0,
+            Self::Constant { .. } | Self::Uniform { .. } | Self::Table(_) | Self::Empirical(_) => {
+                1.0
+            }
             Self::Normal { .. } | Self::LogNormal { .. } => {
                 let (a, b) = self.standard_window();
                 normal_mass(a, b)
@@ -135,12 +147,17 @@ impl Distribution {
                 };
                 (z(min), z(max))
             }
-            Self::Constant { .. } | Self::Uniform { .. } => (f64::NEG_INFINITY, f64::INFINITY),
+            _ => (f64::NEG_INFINITY, f64::INFINITY),
         }
     }
 
     /// The CDF of the truncated law, `P(X ≤ x)`.
     pub fn cdf(&self, x: f64) -> f64 {
+        match self {
+            Self::Table(t) => return t.cdf(x),
+            Self::Empirical(e) => return e.cdf(x),
+            _ => {}
+        }
         let (lo, hi) = self.support();
         if x < lo {
             return 0.0;
@@ -166,6 +183,7 @@ impl Distribution {
                 };
                 normal_mass(a, z) / self.accepted_mass()
             }
+            Self::Table(_) | Self::Empirical(_) => unreachable!("returned above"),
         }
     }
 
@@ -223,6 +241,8 @@ impl Distribution {
                     })
                     .sum()
             }
+            Self::Table(ref t) => t.moment(k),
+            Self::Empirical(ref e) => e.moment(k),
         }
     }
 
@@ -263,6 +283,8 @@ impl Distribution {
                 ("min", min),
                 ("max", max),
             ],
+            // Checked when built (TableLaw::new; measured values by their reader).
+            Self::Table(_) | Self::Empirical(_) => return Ok(()),
         };
         for &(name, value) in &params {
             if !value.is_finite() {

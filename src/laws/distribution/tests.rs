@@ -21,7 +21,7 @@ fn pdf(d: &Distribution, x: f64) -> f64 {
         Distribution::LogNormal {
             sigma, scale, loc, ..
         } => normal_pdf(((x - loc) / scale).ln() / sigma) / (sigma * (x - loc) * p),
-        Distribution::Constant { .. } => unreachable!(),
+        _ => unreachable!(),
     }
 }
 

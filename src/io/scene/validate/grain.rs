@@ -1,5 +1,6 @@
 //! A phase's grain statistics: size and aspect-ratio distributions, and orientation.
 
+use super::axis::{direction, named_axis};
 use crate::contact::QUATERNION_NORM_TOL;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawDistribution, RawFamily, RawKind, RawOrientation};
@@ -17,7 +18,18 @@ pub(super) fn distribution(
     raw: &Spanned<RawDistribution>,
 ) -> Result<Distribution, SceneError> {
     let r = raw.get_ref();
+    if *r.distribution.get_ref() == RawFamily::Table {
+        return super::table::table(src, key, raw);
+    }
+    if let Some((name, span)) = super::table::table_keys(r).into_iter().flatten().next() {
+        return Err(src.invalid(
+            format!("{key}.{name}"),
+            span,
+            "applies only to distribution = \"table\"",
+        ));
+    }
     let (family, takes): (_, &[&str]) = match *r.distribution.get_ref() {
+        RawFamily::Table => unreachable!("handled above"),
         RawFamily::Constant => ("constant", &["value"]),
         RawFamily::Uniform => ("uniform", &["min", "max"]),
         RawFamily::Normal => ("normal", &["mean", "std", "min", "max"]),
@@ -45,6 +57,7 @@ pub(super) fn distribution(
         })
     };
     let d = match *r.distribution.get_ref() {
+        RawFamily::Table => unreachable!("handled above"),
         RawFamily::Constant => Distribution::Constant {
             value: need("value")?,
         },
@@ -81,19 +94,36 @@ pub(super) fn orientation(
 ) -> Result<Orientation, SceneError> {
     let o = raw.get_ref();
     let kind = *o.kind.get_ref();
-    let given: [(&str, Option<Range<usize>>); 6] = [
+    let given: [(&str, Option<Range<usize>>); 10] = [
         ("quaternion", o.quaternion.as_ref().map(Spanned::span)),
         ("axis", o.axis.as_ref().map(Spanned::span)),
         ("mean", o.mean.as_ref().map(Spanned::span)),
         ("kappa", o.kappa.as_ref().map(Spanned::span)),
         ("min", o.min.as_ref().map(Spanned::span)),
         ("max", o.max.as_ref().map(Spanned::span)),
+        ("direction", o.direction.as_ref().map(Spanned::span)),
+        (
+            "spin_reference",
+            o.spin_reference.as_ref().map(Spanned::span),
+        ),
+        ("spin_kappa", o.spin_kappa.as_ref().map(Spanned::span)),
+        ("spin_mean", o.spin_mean.as_ref().map(Spanned::span)),
     ];
     let (name, takes): (_, &[&str]) = match kind {
         RawKind::Random => ("random", &[]),
         RawKind::Fixed => ("fixed", &["quaternion"]),
         RawKind::Aligned => ("aligned", &["axis"]),
         RawKind::Tilt => ("tilt", &["axis", "mean", "kappa", "min", "max"]),
+        RawKind::Fisher => (
+            "fisher",
+            &[
+                "direction",
+                "kappa",
+                "spin_reference",
+                "spin_kappa",
+                "spin_mean",
+            ],
+        ),
     };
     for (param, span) in given {
         if let (Some(span), false) = (span, takes.contains(&param)) {
@@ -142,6 +172,7 @@ pub(super) fn orientation(
             Ok(Orientation::Aligned { axis })
         }
         RawKind::Tilt => tilt(src, key, raw),
+        RawKind::Fisher => super::fisher::fisher(src, key, raw),
     }
 }
 
@@ -187,49 +218,4 @@ fn tilt(src: &Source, key: &str, raw: &Spanned<RawOrientation>) -> Result<Orient
         )
     })?;
     Ok(Orientation::Tilt { axis, angle })
-}
-
-fn named_axis(value: &toml::Value) -> Option<Axis> {
-    match value.as_str()? {
-        "x" => Some(Axis::X),
-        "y" => Some(Axis::Y),
-        "z" => Some(Axis::Z),
-        _ => None,
-    }
-}
-
-/// `"x"`, `"y"`, `"z"` or a non-zero `[x, y, z]`, as a unit vector.
-pub(super) fn direction(
-    src: &Source,
-    key: &str,
-    raw: &Spanned<toml::Value>,
-) -> Result<[f64; 3], SceneError> {
-    if let Some(axis) = named_axis(raw.get_ref()) {
-        return Ok(axis.unit());
-    }
-    let bad = || {
-        src.invalid_at(
-            key,
-            raw,
-            "must be \"x\", \"y\", \"z\" or a non-zero vector [x, y, z]",
-        )
-    };
-    let items = raw
-        .get_ref()
-        .as_array()
-        .filter(|a| a.len() == 3)
-        .ok_or_else(bad)?;
-    let mut v = [0.0; 3];
-    for (slot, item) in v.iter_mut().zip(items) {
-        *slot = item
-            .as_float()
-            .or_else(|| item.as_integer().map(|i| i as f64))
-            .filter(|x| x.is_finite())
-            .ok_or_else(bad)?;
-    }
-    let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if !(norm > 0.0 && norm.is_finite()) {
-        return Err(bad());
-    }
-    Ok(v.map(|x| x / norm))
 }

@@ -1,16 +1,22 @@
 //! Raw scene → [`Scene`]: every value checked, every default filled in, every error
 //! located.
 
+mod axis;
+mod fisher;
 mod grain;
+mod measured;
 mod output;
+mod table;
 mod texture;
+mod triaxial;
 
 use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
-    mean_grain_volume, Boundary, Domain, GrainCount, Matrix, Orientation, PackingParams, Phase,
-    PhaseTexture, Rotation, RveFill, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
+    mean_grain_volume, Boundary, Domain, GrainCount, Matrix, MeasuredMode, Orientation,
+    PackingParams, Phase, PhaseTexture, Rotation, RveFill, Scene, MAX_GRAINS,
+    MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -44,15 +50,35 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         p.share /= total;
     }
 
+    // Exact measured tables: all phases or none, and they fix the count (and the box).
+    let exact: Vec<bool> = phases
+        .iter()
+        .map(|p| matches!(&p.measured, Some(m) if m.mode == MeasuredMode::Exact))
+        .collect();
+    let (count, domain) = if exact.iter().any(|&e| e) {
+        if let Some(i) = exact.iter().position(|&e| !e) {
+            return Err(src.invalid(
+                format!("phase[{i}]"),
+                raw.phase[i].span(),
+                "when a phase takes exactly its measured grains (mode = \"exact\"), every \
+                 phase must: the grains are then the tables' rows",
+            ));
+        }
+        measured::exact_scene(&src, &raw, domain, &mut phases)?
+    } else {
+        (count(&src, &raw, &domain, &phases)?, domain)
+    };
+
     let output = output::output(&src, raw.output.as_ref(), &domain)?;
     let matrix = matrix(&src, &raw, &output)?;
     if output.abaqus {
         let fill = output.rve.map(|r| r.fill);
         solids(&src, &raw, &phases, &matrix, fill)?;
     }
+
     Ok(Scene {
         seed: raw.seed.as_ref().map_or(0, |s| *s.get_ref()),
-        count: count(&src, &raw, &domain, &phases)?,
+        count,
         domain,
         phases,
         packing: packing(&src, raw.packing.as_ref())?,
@@ -161,7 +187,55 @@ fn phase(
             return Err(src.invalid_at(format!("{key}.share"), s, "must be positive and finite"))
         }
     };
-    let size = distribution(src, &format!("{key}.size"), &p.size)?;
+    let (measured, size) = match (&p.measured, &p.size) {
+        (Some(_), Some(s)) => {
+            return Err(src.invalid_at(
+                format!("{key}.size"),
+                s,
+                "the sizes come from [phase.measured]; give one or the other",
+            ))
+        }
+        (Some(m), None) => {
+            let (m, size) = measured::measured(src, &format!("{key}.measured"), m)?;
+            (Some(m), size)
+        }
+        (None, Some(s)) => (None, distribution(src, &format!("{key}.size"), s)?),
+        (None, None) => {
+            return Err(src.missing(
+                format!("{key}.size"),
+                raw.span(),
+                "each phase needs size (a law) or [phase.measured] (a grain table)",
+            ))
+        }
+    };
+    if let Some(m) = &measured {
+        let given = [
+            (
+                "aspect_ratio",
+                m.has_semi_axes(),
+                p.aspect_ratio.as_ref().map(Spanned::span),
+            ),
+            (
+                "b_over_a",
+                m.has_semi_axes(),
+                p.b_over_a.as_ref().map(Spanned::span),
+            ),
+            (
+                "orientation",
+                m.has_orientations(),
+                p.orientation.as_ref().map(Spanned::span),
+            ),
+        ];
+        for (name, from_table, span) in given {
+            if let (true, Some(span)) = (from_table, span) {
+                return Err(src.invalid(
+                    format!("{key}.{name}"),
+                    span,
+                    "the measured table gives this for every grain; remove the key",
+                ));
+            }
+        }
+    }
     let aspect_ratio = match &p.aspect_ratio {
         None => Distribution::Constant { value: 1.0 },
         Some(a) => distribution(src, &format!("{key}.aspect_ratio"), a)?,
@@ -186,33 +260,46 @@ fn phase(
     let phase = Phase {
         name,
         share,
-        size,
+        size: size.clone(),
         aspect_ratio,
         orientation,
         texture,
         elastic,
         damask: p.damask.as_ref().map(|d| d.get_ref().clone()),
+        triaxial: triaxial::triaxial(src, &key, p)?,
+        measured,
     };
 
     let (longest, side) = (phase.max_length(), domain.min_side());
-    if longest >= side {
+    // An exact table's box may still be scaled by target_fraction: checked after that.
+    let exact = matches!(&phase.measured, Some(m) if m.mode == MeasuredMode::Exact);
+    if longest >= side && !exact {
         // Blame the size's upper bound; the message names the aspect ratios too.
         let param = match size {
             Distribution::Constant { .. } => "value",
+            Distribution::Table(_) => "x",
             _ => "max",
         };
-        let at = p
-            .size
-            .get_ref()
-            .param(param)
-            .map_or(p.size.span(), |v| v.span());
+        let at = match (&p.size, &p.measured) {
+            (Some(s), _) => match param {
+                "x" => s.get_ref().x.as_ref().map(|v| v.span()),
+                _ => s.get_ref().param(param).map(|v| v.span()),
+            }
+            .unwrap_or(s.span()),
+            (None, Some(m)) => m.span(),
+            (None, None) => raw.span(),
+        };
         let (a_min, a_max) = phase.aspect_ratio.support();
+        let shapes = match &phase.triaxial {
+            None => format!("aspect ratios in [{a_min}, {a_max}]"),
+            Some(t) => format!("shape ratios down to b/a · c/a = {}", t.min_product()),
+        };
         return Err(src.invalid(
             format!("{key}.size.{param}"),
             at,
             format!(
-                "the longest grain ({longest} end to end, with aspect ratios in [{a_min}, {a_max}]) \
-                 does not fit in the box, whose shortest side is {side}"
+                "the longest grain ({longest} end to end, with {shapes}) does not fit in the \
+                 box, whose shortest side is {side}"
             ),
         ));
     }

@@ -144,7 +144,7 @@ fn fibre(src: &Source, key: &str, raw: &Spanned<RawTexture>) -> Result<Texture, 
         .sample_direction
         .as_ref()
         .ok_or_else(|| need("sample_direction"))?;
-    let sample = super::grain::direction(src, &format!("{key}.sample_direction"), s)?;
+    let sample = super::axis::direction(src, &format!("{key}.sample_direction"), s)?;
     let k = t.kappa.as_ref().ok_or_else(|| need("kappa"))?;
     let kappa = *k.get_ref();
     if !(kappa.is_finite() && kappa >= 0.0) {
