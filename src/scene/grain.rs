@@ -148,8 +148,8 @@ impl Scene {
     /// Each grain comes from the phase furthest below its volume share (the least
     /// `volume drawn / share`, the first phase on ties), so each phase's volume stays
     /// within one grain of its share. [`GrainCount::Exactly`] stops after that many
-    /// grains; [`GrainCount::Fraction`] at the count whose total volume lands nearest
-    /// `φ·V` ([`nearest_count`]).
+    /// grains; [`GrainCount::Fraction`] draws until the total volume first reaches
+    /// `φ·V`, then drops the last grain if the total without it is nearer `φ·V`.
     pub fn sample_grains<R: Rng + ?Sized>(
         &self,
         rng: &mut R,
