@@ -79,8 +79,11 @@ pub struct ProtocolParams {
     pub stage_steps: u64,
     /// FIRE steps a relaxation below the target scale (a trial of the bisection) may
     /// take at `packing.effort = 1`, before it counts as jammed at that scale.
-    /// Default 1000: on 10 000 periodic spheres it reaches 0.641 where 20 000 reach
-    /// the same in ten times the time (BENCHMARKS.md, "Dense packing").
+    /// Default 1000. On 10 000 periodic spheres, equal or lognormal, 300 to 3000 give
+    /// the same density to 0.001 (BENCHMARKS.md, "Dense packing"), and 20 000, the
+    /// budget of the target's own relaxation, took ten times as long for 0.0003 more
+    /// (125 s against 13 s, measured during development with a first form of the
+    /// plateau test).
     pub trial_steps: u64,
     /// The state shrunk by its smallest μ is shrunk by this much more, so that it keeps
     /// the `contact_gap` after rounding. Default `4 · contact_gap`.
