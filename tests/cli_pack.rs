@@ -643,3 +643,35 @@ fn the_shipped_scenes_reach_their_targets_with_the_requested_statistics() {
         );
     }
 }
+
+/// 200 equal spheres asked to fill 0.70 of a periodic cube, above the 0.6435 that
+/// Farr and Groot's model gives for equal spheres: `pack` warns before packing,
+/// naming the estimate, writes it to the summary, and stops jammed below it within
+/// the few percent by which random packings of a small box scatter.
+#[test]
+fn a_target_above_the_reachable_estimate_is_warned_of_before_packing() {
+    let dir = scratch("unreachable");
+    let side = (200.0 * std::f64::consts::PI / 6.0 * 8.0 / 0.70f64).cbrt();
+    let text = format!(
+        "seed = 4\ngrains = 200\n[box]\nsize = [{side}, {side}, {side}]\n[[phase]]\n\
+         size = {{ distribution = \"constant\", value = 2.0 }}\n"
+    );
+    let (run, out) = run_scene(&dir, &text, &[]);
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("warning: the drawn grains fill 0.7000")
+            && err.contains("reach about 0.643 (Farr and Groot's estimate"),
+        "{err}"
+    );
+    let (_, summary) = check_written_packing(&out, true);
+    let reachable = number(&summary["reachable_fraction"]);
+    assert!((reachable - 0.6435).abs() < 1e-3, "{reachable}");
+    assert_eq!(summary["reachable_exact"], true);
+    let reached = number(&summary["packing_fraction"]);
+    assert!(reached < 0.70 && reached > 0.60, "{reached}");
+    // Below the estimate, no warning.
+    let fewer = text.replace("grains = 200", "grains = 150");
+    let (run, _) = run_scene(&dir, &fewer, &[]);
+    assert!(!stderr(&run).contains("warning"), "{}", stderr(&run));
+}

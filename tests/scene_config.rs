@@ -533,15 +533,30 @@ fn every_grain_keeps_its_volume_and_its_tilt() {
 }
 
 #[test]
-fn target_fraction_draws_until_the_volume_first_reaches_it() {
+fn target_fraction_draws_the_count_nearest_to_it() {
     let scene = load("configs/kanapy_elongated.toml");
     let grains = scene.sample_grains(&mut scene.rng()).unwrap();
     let target = 0.65 * scene.domain.volume();
+    // The same draws, one grain fewer and one more (grains are drawn in the same
+    // order whatever the count).
+    let total_of = |n: usize| {
+        let mut exactly = scene.clone();
+        exactly.count = GrainCount::Exactly(n);
+        let drawn = exactly.sample_grains(&mut exactly.rng()).unwrap();
+        drawn.iter().map(GrainSpec::volume).sum::<f64>()
+    };
+    let n = grains.len();
     let total: f64 = grains.iter().map(GrainSpec::volume).sum();
-    let last = grains.last().unwrap().volume();
+    assert_eq!(total, total_of(n));
+    let (fewer, more) = (total_of(n - 1), total_of(n + 1));
     assert!(
-        total >= target && total - last < target,
-        "{total} vs {target}"
+        fewer < target && more >= target,
+        "{fewer} {more} vs {target}"
+    );
+    let miss = (total - target).abs();
+    assert!(
+        miss <= (fewer - target).abs() && miss <= (more - target).abs(),
+        "{fewer} {total} {more} vs {target}"
     );
     // The count is close to its expectation: the count of ~1030 grains whose volumes
     // have a coefficient of variation 0.73 has a standard deviation of √1030 × 0.73 ≈ 24,
@@ -552,6 +567,33 @@ fn target_fraction_draws_until_the_volume_first_reaches_it() {
         "{} vs {expected}",
         grains.len()
     );
+}
+
+/// Eight grains of diameter 30 and small ones of diameter 4, half the volume each, in
+/// a box 2.5 large diameters wide: drawing until the target is first reached gave
+/// 0.5698 for 0.55 asked; the nearest count lands within half a large grain (0.0168).
+#[test]
+fn large_grains_do_not_overshoot_the_target_fraction() {
+    let text = r#"
+seed = 1
+target_fraction = 0.55
+[box]
+size = [75.0, 75.0, 75.0]
+[[phase]]
+name = "large"
+share = 0.5
+size = { distribution = "constant", value = 30.0 }
+[[phase]]
+name = "small"
+share = 0.5
+size = { distribution = "constant", value = 4.0 }
+"#;
+    let scene = Scene::from_str(text, "binary.toml").unwrap();
+    let grains = scene.sample_grains(&mut scene.rng()).unwrap();
+    let fraction = grains.iter().map(GrainSpec::volume).sum::<f64>() / scene.domain.volume();
+    let half_large = 0.5 * PI / 6.0 * 30f64.powi(3) / scene.domain.volume();
+    assert!((fraction - 0.55).abs() <= half_large, "{fraction}");
+    assert!(fraction < 0.5698, "{fraction}");
 }
 
 #[test]

@@ -6,6 +6,7 @@
 //! The sampler (`scene`), the summary and the plots (`io`) all use these, so a law
 //! means the same thing wherever it appears.
 
+mod close_packing;
 mod density;
 mod distribution;
 mod fisher;
@@ -16,6 +17,7 @@ mod table;
 mod von_mises;
 mod von_mises_cdf;
 
+pub use close_packing::{random_close_packing, random_close_packing_with, FREE_LENGTH, RODS};
 #[cfg(test)]
 pub(crate) use distribution::sample_laws;
 pub use distribution::Distribution;

@@ -6,6 +6,7 @@
 
 use super::forces::Forces;
 use super::grains::rotate_by;
+use super::jamming::{JamTest, Verdict};
 use super::neighbours::Neighbours;
 use super::state::State;
 use super::{Counters, FireParams, PackError, Progress};
@@ -34,7 +35,8 @@ pub(crate) struct Context<'a> {
 pub(crate) enum Outcome {
     /// Every pair apart at the real scale (μ ≥ 1 + contact gap), every grain inside.
     Clean,
-    /// The energy stopped falling: the grains are jammed at this scale.
+    /// The energy per grain converged to a positive plateau: the grains are jammed at
+    /// this scale (the test of [`jamming`](super::jamming)).
     Stuck,
     /// The step budget ran out.
     Budget,
@@ -102,8 +104,17 @@ impl Fire {
         self.dt = p.dt_start;
         self.alpha = p.alpha_start;
         self.positive = 0;
-        let (mut window_min, mut previous_min) = (f64::INFINITY, f64::INFINITY);
-        for step in 0..budget {
+        // A contact overlapping by the margin has energy (2ρ (S − s))², ρ the smallest
+        // semi-axis: the jamming test's unit.
+        let mean_rho2 = state
+            .shapes
+            .iter()
+            .map(|e| e.inscribed_radius().powi(2))
+            .sum::<f64>()
+            / n as f64;
+        let margin_energy = 4.0 * (big_s - s).powi(2) * mean_rho2;
+        let mut jam = JamTest::new(p.window, p.plateau_slope, margin_energy);
+        for _ in 0..budget {
             if run.stop.load(Ordering::Relaxed) {
                 return Ok(Outcome::Interrupted);
             }
@@ -146,13 +157,9 @@ impl Fire {
                 fraction: state.fraction(s),
                 overlaps: forces.overlaps,
             });
-            window_min = window_min.min(energy);
-            if (step + 1) % p.window == 0 {
-                if window_min > p.stuck_ratio * previous_min {
-                    counters.response += t2.elapsed();
-                    return Ok(Outcome::Stuck);
-                }
-                (previous_min, window_min) = (window_min, f64::INFINITY);
+            if jam.step(energy / n as f64) == Verdict::Jammed && self.restore == 0.0 {
+                counters.response += t2.elapsed();
+                return Ok(Outcome::Stuck);
             }
             self.step(state, forces, big_s, turning)?;
             counters.response += t2.elapsed();

@@ -14,11 +14,17 @@
 //!    phase** (the contact function of every candidate pair) and **response** (forces
 //!    and torques, a damped inertial move);
 //! 3. the relaxation ends *clean* as soon as every pair is apart at the true scale (μ ≥
-//!    1 + [`contact_gap`](ProtocolParams::contact_gap)), or *stuck* when the energy stops falling (jammed);
-//! 4. the scale moves: the first trial is the target itself (`s = 1`); after a stuck
-//!    relaxation the state shrunk by its smallest μ is a clean state at once, and the
-//!    scale is bisected between the best clean scale and the smallest stuck one until
-//!    they are within `jam_resolution` (relative; a scene parameter);
+//!    1 + [`contact_gap`](ProtocolParams::contact_gap)), or *stuck* when the energy per
+//!    grain has converged to a positive plateau (jammed: the test of `jamming.rs`);
+//! 4. the scale moves: the first trial is the target itself (`s = 1`, with a budget of
+//!    [`stage_steps`](ProtocolParams::stage_steps)); after a stuck relaxation the state
+//!    shrunk by its smallest μ is a clean state at once, and the scale is bisected
+//!    between the best clean scale and the smallest stuck one until they are within
+//!    `jam_resolution` (relative; a scene parameter). Near the jamming point
+//!    relaxations slow down without end (critical slowing down), so each trial below
+//!    the target has a budget of `effort` (a scene parameter) times
+//!    [`trial_steps`](ProtocolParams::trial_steps) steps, and one that runs out of it
+//!    counts as jammed at that scale: more effort buys density for time;
 //! 5. grains that may turn and reached the target are turned back toward their drawn
 //!    orientations (`restore`, a scene parameter): [`restore_steps`](ProtocolParams::restore_steps)
 //!    steps with a pull of stiffness [`restore_stiffness`](ProtocolParams::restore_stiffness)
@@ -32,6 +38,7 @@
 mod fire;
 mod forces;
 mod grains;
+mod jamming;
 mod job;
 mod neighbours;
 mod state;
@@ -116,12 +123,17 @@ pub fn pack(
             break StopReason::StepLimit;
         }
         run.counters.steps += 1;
+        let budget = if s >= 1.0 {
+            protocol.stage_steps
+        } else {
+            trial_steps(&protocol, params.effort)
+        };
         let outcome = fire.relax(
             &mut state,
             &mut run,
             s,
             s * (1.0 + protocol.margin),
-            left.min(protocol.stage_steps),
+            left.min(budget),
         )?;
         match outcome {
             Outcome::Interrupted => break StopReason::Interrupted,
@@ -163,6 +175,12 @@ pub fn pack(
         }
     }
     finish(&sorted, &order, &mut state, snapshot, reason, run.counters)
+}
+
+/// The step budget of a relaxation below the target scale: `effort` times
+/// [`ProtocolParams::trial_steps`], at least one step.
+fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
+    ((protocol.trial_steps as f64 * effort).ceil() as u64).max(1)
 }
 
 /// The grains' indices sorted by the Morton code of their centres (10 bits a

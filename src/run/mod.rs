@@ -18,10 +18,12 @@
 //! ```
 
 mod quantity;
+mod reachable;
 mod shape_statistics;
 mod statistics;
 
 pub use quantity::QuantityStatistics;
+pub use reachable::Drawn;
 pub use shape_statistics::{OrientationStatistics, RatioStatistics, ShapeStatistics};
 pub use statistics::{PhaseStatistics, Share, Statistics, TurnStatistics};
 
@@ -49,6 +51,9 @@ pub struct RunOptions<'a> {
     pub interrupt: Option<&'a AtomicBool>,
     /// The engine's tunables; the default is what every shipped figure used.
     pub tuning: Tuning,
+    /// Called once the grains are drawn, before packing starts (to warn of a target
+    /// above the reachable estimate before a long run).
+    pub drawn: Option<&'a mut (dyn FnMut(&Drawn) + Send)>,
 }
 
 /// What a run gives back.
@@ -60,6 +65,8 @@ pub struct RunResult {
     pub threads: usize,
     /// The grains as drawn, before packing (target sizes and orientations).
     pub specs: Vec<GrainSpec>,
+    /// What was drawn: fractions requested and drawn, and the reachable estimate.
+    pub drawn: Drawn,
     /// The packed grains, why the loop stopped, its counters, and the exact check of
     /// the result (always clean: [`run`] returns an error otherwise).
     pub packing: Packing,
@@ -122,12 +129,17 @@ pub fn run(scene: &Scene, options: RunOptions) -> Result<RunResult, RunError> {
         progress,
         interrupt,
         tuning,
+        drawn,
     } = options;
     let seed = seed.unwrap_or(scene.seed);
     let mut specs = scene
         .sample_grains(&mut ChaCha8Rng::seed_from_u64(seed))
         .map_err(RunError::Sample)?;
     scene.sample_crystals(&mut specs, &mut Scene::crystal_rng(seed));
+    let drawn_grains = Drawn::of(scene, &specs);
+    if let Some(report) = drawn {
+        report(&drawn_grains);
+    }
     let never = AtomicBool::new(false);
     let stop = interrupt.unwrap_or(&never);
     let mut silent = |_: &Progress| {};
@@ -164,6 +176,7 @@ pub fn run(scene: &Scene, options: RunOptions) -> Result<RunResult, RunError> {
         seed,
         threads,
         specs,
+        drawn: drawn_grains,
         packing,
         statistics,
         timings: RunTimings {

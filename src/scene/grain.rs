@@ -282,7 +282,8 @@ impl Scene {
     /// Each grain comes from the phase furthest below its volume share (the least
     /// `volume drawn / share`, the first phase on ties), so each phase's volume stays
     /// within one grain of its share. [`GrainCount::Exactly`] stops after that many
-    /// grains; [`GrainCount::Fraction`] as soon as the total volume reaches `φ·V`.
+    /// grains; [`GrainCount::Fraction`] draws until the total volume first reaches
+    /// `φ·V`, then drops the last grain if the total without it is nearer `φ·V`.
     pub fn sample_grains<R: Rng + ?Sized>(
         &self,
         rng: &mut R,
@@ -316,6 +317,28 @@ impl Scene {
             total += grain.volume();
             grains.push(grain);
         }
+        if let GrainCount::Fraction(f) = self.count {
+            grains.truncate(nearest_count(&grains, f * self.domain.volume()));
+        }
         Ok(grains)
+    }
+}
+
+/// Of the grains drawn until their volumes first reached `target`, how many to keep so
+/// that the total lands nearest it: all, or all but the last when the total without it
+/// is nearer (never none). With large grains the first grain past the target can
+/// overshoot it by a lot (0.570 drawn for 0.55 asked with 8 grains of diameter 30 in a
+/// box of 75), and a target that is not met then reads as "not reached".
+fn nearest_count(grains: &[GrainSpec], target: f64) -> usize {
+    let n = grains.len();
+    if n < 2 {
+        return n;
+    }
+    let total: f64 = grains.iter().map(GrainSpec::volume).sum();
+    let without = total - grains[n - 1].volume();
+    if (target - without).abs() < (total - target).abs() {
+        n - 1
+    } else {
+        n
     }
 }

@@ -102,7 +102,8 @@ pub enum GrainCount {
     Exactly(usize),
     /// As many as it takes for their volumes to reach this fraction of the box
     /// (`target_fraction = φ`): grains are drawn until their total volume first
-    /// reaches `φ·V`, so it exceeds `φ·V` by less than the last grain's volume.
+    /// reaches `φ·V`, and the last one is kept only if that lands nearer `φ·V`, so the
+    /// total is within half a grain's volume of `φ·V`.
     Fraction(f64),
 }
 

@@ -20,6 +20,11 @@ pub struct PackingParams {
     /// Whether grains that may turn are turned back toward their drawn orientations,
     /// as far as their neighbours let them, once packed at the target. Default true.
     pub restore: bool,
+    /// How much work the loop may spend per trial scale when the target cannot be
+    /// reached: each relaxation below the target may take `effort` times the default
+    /// budget of steps before it counts as jammed. Higher is denser and slower.
+    /// In `[0.1, 100]`; default 1.
+    pub effort: f64,
 }
 
 impl Default for PackingParams {
@@ -30,6 +35,7 @@ impl Default for PackingParams {
             rotation: Rotation::None,
             max_turn: std::f64::consts::PI,
             restore: true,
+            effort: 1.0,
         }
     }
 }

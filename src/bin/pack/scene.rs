@@ -5,7 +5,7 @@ use crate::exit::{Exit, Failure};
 use anyhow::{anyhow, Context};
 use grainpack::io::report::{create_dir, write_outputs};
 use grainpack::packing::{Progress, StopReason};
-use grainpack::run::{RunError, RunOptions};
+use grainpack::run::{Drawn, RunError, RunOptions};
 use grainpack::scene::{OutputSpec, Scene};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
@@ -44,6 +44,11 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
 
     let mut bar = Bar::new(options.quiet, scene.expected_count().round() as usize);
     let mut progress = |p: &Progress| bar.update(p);
+    let mut drawn = |d: &Drawn| {
+        if d.above_reachable() {
+            warn_unreachable(d);
+        }
+    };
     let result = grainpack::run::run(
         &scene,
         RunOptions {
@@ -51,6 +56,7 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
             threads: options.threads,
             progress: Some(&mut progress),
             interrupt: Some(&STOP),
+            drawn: Some(&mut drawn),
             ..RunOptions::default()
         },
     );
@@ -69,12 +75,16 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     let wrote = describe(&written.files);
     let (packing, statistics) = (&result.packing, &result.statistics);
     if !options.quiet {
+        let d = &result.drawn;
         eprintln!(
-            "pack: {} grains, packing fraction {:.4} (target {:.4}), {} after {} steps in \
+            "pack: {} grains, packing fraction {:.4} reached (requested {:.4}, drawn {:.4}; \
+             random close packing of spheres of these sizes ≈ {:.3}), {} after {} steps in \
              {:.2} s; {} pairs checked, none overlapping",
             packing.grains.len(),
             statistics.packing_fraction,
-            statistics.target_fraction,
+            d.requested_fraction,
+            d.drawn_fraction,
+            d.reachable_fraction,
             packing.stop,
             packing.counters.steps,
             result.timings.packing.as_secs_f64(),
@@ -104,6 +114,26 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
         statistics.full_size_fraction,
     );
     Ok(Exit::NotReached)
+}
+
+/// Warns, before packing, that the drawn grains are denser than the reachable
+/// estimate; printed even with `--quiet`, as the message of a target not reached is.
+fn warn_unreachable(d: &Drawn) {
+    let (what, caveat) = if d.spheres {
+        ("these spheres", "")
+    } else {
+        (
+            "spheres of the same volumes",
+            "; ellipsoids free to turn can pack a few percent denser, frozen or slender \
+             ones much less",
+        )
+    };
+    eprintln!(
+        "pack: warning: the drawn grains fill {:.4} of the box at full size, but random \
+         packings of {what} reach about {:.3} (Farr and Groot's estimate{caveat}): the \
+         target is unlikely to be reached, and the loop will stop jammed below it",
+        d.drawn_fraction, d.reachable_fraction
+    );
 }
 
 /// Creates the output directory if any output is enabled; returns it if it is new.

@@ -29,6 +29,12 @@ pub struct Summary<'a> {
     pub full_size_fraction: f64,
     /// Fraction the written grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`.
     pub packing_fraction: f64,
+    /// Estimate of the densest random packing of the drawn grains, made before
+    /// packing: Farr and Groot's model for spheres of their equivalent diameters
+    /// ([`Drawn::reachable_fraction`](crate::run::Drawn)).
+    pub reachable_fraction: f64,
+    /// Whether every grain is a sphere, the case the estimate is made for.
+    pub reachable_exact: bool,
     /// Global scale of the grains reached (1: target sizes).
     pub scale: f64,
     /// `target_reached`, `jammed`, `step_limit` or `interrupted`.
@@ -114,6 +120,8 @@ impl<'a> Summary<'a> {
             target_fraction: statistics.target_fraction,
             full_size_fraction: statistics.full_size_fraction,
             packing_fraction: statistics.packing_fraction,
+            reachable_fraction: result.drawn.reachable_fraction,
+            reachable_exact: result.drawn.spheres,
             scale: packing.scale,
             stop_reason: packing.stop.name(),
             overlapping_pairs: v.overlapping_pairs,

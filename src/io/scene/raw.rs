@@ -206,6 +206,7 @@ pub(crate) struct RawPacking {
     pub rotation: Opt<toml::Value>,
     pub max_turn: Opt<f64>,
     pub restore: Opt<bool>,
+    pub effort: Opt<f64>,
 }
 
 /// `[output]`.

@@ -383,6 +383,12 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
         }
         params.jam_resolution = *v.get_ref();
     }
+    if let Some(v) = &raw.effort {
+        if !(*v.get_ref() >= MIN_EFFORT && *v.get_ref() <= MAX_EFFORT) {
+            return Err(src.invalid_at("packing.effort", v, "must lie in [0.1, 100]"));
+        }
+        params.effort = *v.get_ref();
+    }
     if let Some(v) = &raw.rotation {
         params.rotation = match v.get_ref() {
             toml::Value::Boolean(false) => Rotation::None,
@@ -409,3 +415,9 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
     }
     Ok(params)
 }
+
+/// The range of `packing.effort`: from a tenth of the default budget per trial (100
+/// FIRE steps) to a hundred times it.
+const MIN_EFFORT: f64 = 0.1;
+/// See [`MIN_EFFORT`].
+const MAX_EFFORT: f64 = 100.0;
