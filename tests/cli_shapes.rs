@@ -164,6 +164,12 @@ fn bad_shapes_and_tables_exit_2_name_the_key_and_write_nothing() {
         ),
         (
             "size = { distribution = \"constant\", value = 5.0 }\n\
+             b_over_a = { distribution = \"table\", x = [0.4, 0.6], cdf = [0, 1], by = \"volume\" }\n\
+             c_over_b = { distribution = \"constant\", value = 0.5 }\n",
+            "phase[0].b_over_a.by",
+        ),
+        (
+            "size = { distribution = \"constant\", value = 5.0 }\n\
              orientation = { kind = \"fisher\", kappa = 3.0, spin_kappa = 2.0 }\n",
             "phase[0].orientation.spin_kappa",
         ),

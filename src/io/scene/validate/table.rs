@@ -51,21 +51,29 @@ pub(super) fn table(
     }
     let x = need(src, key, raw, "x", &r.x)?;
     let cdf = need(src, key, raw, "cdf", &r.cdf)?;
-    let basis = match r.by.as_ref() {
-        None => TableBasis::Number,
-        Some(b) => match b.get_ref().as_str() {
-            "number" => TableBasis::Number,
-            "volume" => TableBasis::Volume,
-            _ => {
-                return Err(src.invalid_at(
-                    format!("{key}.by"),
-                    b,
-                    "must be \"number\" (fraction of grains below x) or \"volume\" (volume \
+    let basis =
+        match r.by.as_ref() {
+            None => TableBasis::Number,
+            Some(b) => {
+                match b.get_ref().as_str() {
+                    "number" => TableBasis::Number,
+                    // A volume fraction weighs grains by d³: it means something for sizes only.
+                    "volume" if key.ends_with(".size") => TableBasis::Volume,
+                    "volume" => return Err(src.invalid_at(
+                        format!("{key}.by"),
+                        b,
+                        "by = \"volume\" applies to size only (a volume fraction weighs grains by \
+                     their diameter cubed); a shape ratio's table is by number",
+                    )),
+                    _ => return Err(src.invalid_at(
+                        format!("{key}.by"),
+                        b,
+                        "must be \"number\" (fraction of grains below x) or \"volume\" (volume \
                      fraction passing x, a sieve curve)",
-                ))
+                    )),
+                }
             }
-        },
-    };
+        };
     let interpolation = match r.interpolation.as_ref() {
         None => TableInterpolation::Linear,
         Some(i) => match i.get_ref().as_str() {
