@@ -38,14 +38,19 @@ impl Grain {
 pub fn read_grains(path: &Path) -> Vec<Grain> {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
-    assert_eq!(
-        lines.next(),
-        Some("id,phase,x,y,z,a1,a2,a3,qw,qx,qy,qz,o0,o1,o2,o3,phi1,Phi,phi2")
+    // The crystal orientation columns (o0..phi2) came with issue 13; tables written
+    // before it (configs/measured_grains.csv) end at qz.
+    let header = lines.next().unwrap_or_default();
+    let shape = "id,phase,x,y,z,a1,a2,a3,qw,qx,qy,qz";
+    assert!(
+        header == shape || header == format!("{shape},o0,o1,o2,o3,phi1,Phi,phi2"),
+        "{header}"
     );
+    let width = header.split(',').count();
     lines
         .map(|line| {
             let f: Vec<&str> = line.split(',').collect();
-            assert_eq!(f.len(), 19, "{line}");
+            assert_eq!(f.len(), width, "{line}");
             let v: Vec<f64> = f[2..].iter().map(|s| s.parse().unwrap()).collect();
             let quaternion = Quaternion::new(v[6], v[7], v[8], v[9]);
             // Written quaternions are unit to rounding (a few ulps).

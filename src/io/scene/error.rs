@@ -117,7 +117,6 @@ pub struct DataFileError {
     pub value: String,
     /// What is wrong with it.
     pub reason: String,
-
 }
 
 /// The text being validated and its name, to turn byte spans into error locations.

@@ -15,8 +15,7 @@ use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
     mean_grain_volume, Boundary, Domain, GrainCount, Matrix, MeasuredMode, Orientation,
-    PackingParams, Phase, PhaseTexture, Rotation, RveFill, Scene, MAX_GRAINS,
-    MAX_TARGET_FRACTION,
+    PackingParams, Phase, PhaseTexture, Rotation, RveFill, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
