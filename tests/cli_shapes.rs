@@ -245,13 +245,10 @@ fn bad_measured_tables_name_line_and_column_and_write_nothing() {
     let scene = "seed = 1\ngrains = 3\n[box]\nsize = [40.0, 40.0, 40.0]\n[[phase]]\n\
                  measured = { file = \"t.csv\" }\n";
     for (csv, want) in [
-        ("d\n3.0\n-1.0\n", "t.csv:3: column d = -1"),
-        ("a1,a2,a3\n3,2,1\n3,2,abc\n", "t.csv:3: column a3 = abc"),
-        (
-            "a1,a2,a3,qw,qx,qy,qz\n3,2,1,0.9,0,0,0\n",
-            "t.csv:2: column qw",
-        ),
-        ("size\n3\n", "t.csv:1: column (header)"),
+        ("d\n3.0\n-1.0\n", "t.csv:3: d = -1"),
+        ("a1,a2,a3\n3,2,1\n3,2,abc\n", "t.csv:3: a3 = abc"),
+        ("a1,a2,a3,qw,qx,qy,qz\n3,2,1,0.9,0,0,0\n", "t.csv:2: qw"),
+        ("size\n3\n", "t.csv:1: (header)"),
     ] {
         let dir = support::files::scratch("shapes", "badcsv");
         std::fs::write(dir.join("s.toml"), scene).unwrap();

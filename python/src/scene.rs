@@ -69,6 +69,15 @@ pub fn scene_error(py: Python<'_>, error: &LibSceneError) -> PyErr {
             Some(key.clone()),
             Some(value.clone()),
         ),
+        // A bad row of a data file the scene names (orientations, a measured table):
+        // the data file and its line; the key is the scene's key that names it.
+        LibSceneError::DataFile(e) => (
+            Some(e.path.clone()),
+            Some(e.line),
+            None,
+            Some(e.key.clone()),
+            Some(e.value.clone()),
+        ),
         LibSceneError::Read { path, .. } => {
             (Some(path.display().to_string()), None, None, None, None)
         }

@@ -78,22 +78,8 @@ pub enum SceneError {
         /// What is wrong with it.
         reason: String,
     },
-    /// A bad row of a measured grain table (`[phase.measured]`).
-    #[error("{file}:{line}: column {column} = {value}: {reason}")]
-    Table {
-        /// The table's path.
-        file: String,
-        /// 1-based line (1: the header).
-        line: usize,
-        /// The column's name, or `(header)` / `(row)`.
-        column: String,
-        /// The cell as written.
-        value: String,
-        /// What is wrong with it.
-        reason: String,
-    },
-    /// A data file named by the scene (an orientation file) cannot be read or has a
-    /// bad row.
+    /// A data file named by the scene (an orientation file, a measured grain table)
+    /// cannot be read or has a bad row.
     #[error("{0}")]
     DataFile(Box<DataFileError>),
 }

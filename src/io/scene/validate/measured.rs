@@ -7,7 +7,7 @@
 //! ignored, so a `grains.csv` written by `pack` reads back as it is.
 
 use crate::contact::QUATERNION_NORM_TOL;
-use crate::io::scene::error::{SceneError, Source};
+use crate::io::scene::error::{DataFileError, SceneError, Source};
 use crate::io::scene::raw::{RawMeasured, RawScene};
 use crate::laws::{Distribution, EmpiricalLaw};
 use crate::scene::{
@@ -64,13 +64,15 @@ pub(super) fn measured(
     let table_file = path.display().to_string();
     let grains =
         read_table(&text, select.as_deref()).map_err(|(line, column, value, reason)| {
-            SceneError::Table {
-                file: table_file.clone(),
+            SceneError::DataFile(Box::new(DataFileError {
+                file: src.file.to_owned(),
+                key: format!("{key}.file"),
+                path: table_file.clone(),
                 line,
                 column,
                 value,
                 reason,
-            }
+            }))
         })?;
     if grains.is_empty() {
         return Err(src.invalid_at(
