@@ -2,7 +2,7 @@
 //! the CLI's outputs on request.
 
 use crate::errors::chain;
-use grainpack::io::report::{write_grains_csv, write_outputs, Summary};
+use grainpack::io::report::{crystal_orientations, write_grains_csv, write_outputs, Summary};
 use grainpack::io::voxel::voxelise;
 use grainpack::run::RunResult;
 use grainpack::scene::{proportional_cells, RveFill, Scene};
@@ -79,7 +79,8 @@ impl PyPacking {
     /// is here, with the same doubles.
     fn _grain_table<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let mut text = Vec::new();
-        write_grains_csv(&mut text, &self.result.packing.grains)
+        let crystals = crystal_orientations(&self.scene, &self.result);
+        write_grains_csv(&mut text, &self.result.packing.grains, &crystals)
             .map_err(|e| PyOSError::new_err(e.to_string()))?;
         let mut reader = csv::Reader::from_reader(text.as_slice());
         let header: Vec<String> = reader

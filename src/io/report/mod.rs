@@ -69,9 +69,11 @@ pub const GRAINS_HEADER: [&str; 12] = [
 /// Bunge Euler angles in degrees.
 pub const CRYSTAL_HEADER: [&str; 7] = ["o0", "o1", "o2", "o3", "phi1", "Phi", "phi2"];
 
-/// Writes the grain table with the crystal orientations: [`GRAINS_HEADER`] then
-/// [`CRYSTAL_HEADER`], `crystals[i]` for `grains[i]`.
-pub fn write_grains_csv_oriented(
+/// Writes the grain table: [`GRAINS_HEADER`] then [`CRYSTAL_HEADER`], one row per grain
+/// (`crystals[i]` for `grains[i]`, from [`crystal_orientations`]) with integers for `id`
+/// and `phase` and 17 significant digits ([`format_17`]) for the rest, which read back
+/// to the same doubles.
+pub fn write_grains_csv(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     crystals: &[[f64; 4]],
@@ -122,29 +124,6 @@ pub enum ReportError {
     },
 }
 
-/// Writes the grain table: [`GRAINS_HEADER`], then one row per grain with integers for
-/// `id` and `phase` and 17 significant digits ([`format_17`]) for the rest, which
-/// read back to the same doubles.
-pub fn write_grains_csv(out: &mut dyn Write, grains: &[PackedGrain]) -> io::Result<()> {
-    let mut writer = csv::Writer::from_writer(out);
-    writer.write_record(GRAINS_HEADER)?;
-    let mut row = Vec::with_capacity(GRAINS_HEADER.len());
-    for g in grains {
-        row.clear();
-        row.push(g.id.to_string());
-        row.push(g.phase.to_string());
-        row.extend(
-            g.centre
-                .iter()
-                .chain(&g.semi_axes)
-                .chain(&g.quaternion)
-                .map(|&v| format_17(v)),
-        );
-        writer.write_record(&row)?;
-    }
-    writer.flush()
-}
-
 /// Writes the summary as pretty-printed JSON, ending with a newline.
 pub fn write_summary_json(out: &mut dyn Write, summary: &Summary) -> io::Result<()> {
     serde_json::to_writer_pretty(&mut *out, summary)?;
@@ -177,9 +156,7 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     let mut files = OutputFiles::new(&output.dir);
     let crystals = crystal_orientations(scene, result);
     if output.grains_csv {
-        files.write(GRAINS_CSV, |w| {
-            write_grains_csv_oriented(w, grains, &crystals)
-        })?;
+        files.write(GRAINS_CSV, |w| write_grains_csv(w, grains, &crystals))?;
     }
     if let Some(vtk) = &output.vtk {
         files.write(GRAINS_VTU, |w| {
@@ -319,10 +296,14 @@ mod tests {
             quaternion: [0.5f64.sqrt(), 0.0, 0.0, -(0.5f64.sqrt())],
         };
         let mut out = Vec::new();
-        write_grains_csv(&mut out, &[grain]).unwrap();
+        let crystal = [0.5, 0.5, -0.5, 0.5];
+        write_grains_csv(&mut out, &[grain], &[crystal]).unwrap();
         let text = String::from_utf8(out).unwrap();
         let mut lines = text.lines();
-        assert_eq!(lines.next(), Some("id,phase,x,y,z,a1,a2,a3,qw,qx,qy,qz"));
+        assert_eq!(
+            lines.next(),
+            Some("id,phase,x,y,z,a1,a2,a3,qw,qx,qy,qz,o0,o1,o2,o3,phi1,Phi,phi2")
+        );
         let row: Vec<&str> = lines.next().unwrap().split(',').collect();
         assert_eq!(&row[..2], ["0", "1"]);
         let values: Vec<f64> = row[2..].iter().map(|v| v.parse().unwrap()).collect();
@@ -331,9 +312,10 @@ mod tests {
             .iter()
             .chain(&grain.semi_axes)
             .chain(&grain.quaternion)
+            .chain(&crystal)
             .copied()
             .collect();
-        assert_eq!(values, want);
+        assert_eq!(values[..14], want[..]);
         assert_eq!(row[3], "6.6666666666666663e-1");
         assert_eq!(lines.next(), None);
     }
