@@ -11,8 +11,8 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use support::files::{files_in, scratch};
+
+use support::files::{files_in, pack_in, scratch};
 use support::packed::{extent, read_grains, Grain};
 
 /// A point's distance from its ellipsoid, in the ellipsoid's own units
@@ -64,11 +64,7 @@ orientation = { kind = "aligned", axis = "z" }
 fn pack(name: &str, scene: &str) -> PathBuf {
     let dir = scratch("exports", name);
     std::fs::write(dir.join("scene.toml"), scene).unwrap();
-    let run = Command::new(env!("CARGO_BIN_EXE_pack"))
-        .args(["scene.toml", "--out", "out", "--quiet"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let run = pack_in(&dir, &["scene.toml", "--out", "out", "--quiet"]);
     let err = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(0), "{err}");
     dir.join("out")

@@ -7,16 +7,8 @@ mod support;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use support::files::files_in;
+use support::files::{files_in, pack_in};
 use support::packed::{check_overlaps, extent, read_grains, Grain};
-
-fn pack_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pack"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
 
 /// A fresh, empty directory for one test.
 fn scratch(name: &str) -> PathBuf {

@@ -6,17 +6,8 @@ mod support;
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use support::files::files_in;
+use support::files::{files_in, pack_in};
 use support::packed::{check_overlaps, extent, read_grains};
-
-fn pack(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pack"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
 
 fn repo(path: &str) -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -29,7 +20,7 @@ fn repo(path: &str) -> String {
 /// the target, outputs written), and returns the summary, after checking that
 /// the grains are triaxial-ordered and overlap-free by the independent check.
 fn pack_and_check(dir: &Path, scene: &str, periodic: bool, code: i32) -> Value {
-    let run = pack(dir, &[scene, "--out", "out", "--threads", "2", "--quiet"]);
+    let run = pack_in(dir, &[scene, "--out", "out", "--threads", "2", "--quiet"]);
     assert_eq!(
         run.status.code(),
         Some(code),
@@ -189,7 +180,7 @@ fn bad_shapes_and_tables_exit_2_name_the_key_and_write_nothing() {
     for (i, (phase, key)) in cases.iter().enumerate() {
         let dir = support::files::scratch("shapes", &format!("bad{i}"));
         std::fs::write(dir.join("bad.toml"), format!("{base}{phase}")).unwrap();
-        let run = pack(&dir, &["bad.toml", "--out", "out"]);
+        let run = pack_in(&dir, &["bad.toml", "--out", "out"]);
         let err = String::from_utf8_lossy(&run.stderr);
         assert_eq!(run.status.code(), Some(2), "{key}: {err}");
         assert!(err.contains("bad.toml"), "{err}");
@@ -226,7 +217,7 @@ fn measured_table_packs_exactly_its_grains_and_round_trips() {
          measured = { file = \"out/grains.csv\", phase = 0 }\n",
     )
     .unwrap();
-    let run = pack(&dir, &["again.toml", "--out", "again", "--quiet"]);
+    let run = pack_in(&dir, &["again.toml", "--out", "again", "--quiet"]);
     assert_eq!(
         run.status.code(),
         Some(0),
@@ -253,7 +244,7 @@ fn bad_measured_tables_name_line_and_column_and_write_nothing() {
         let dir = support::files::scratch("shapes", "badcsv");
         std::fs::write(dir.join("s.toml"), scene).unwrap();
         std::fs::write(dir.join("t.csv"), csv).unwrap();
-        let run = pack(&dir, &["s.toml", "--out", "out"]);
+        let run = pack_in(&dir, &["s.toml", "--out", "out"]);
         let err = String::from_utf8_lossy(&run.stderr);
         assert_eq!(run.status.code(), Some(2), "{err}");
         assert!(err.contains(want), "want {want} in: {err}");

@@ -5,17 +5,8 @@
 
 mod support;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use support::files::files_in;
-
-fn pack_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pack"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+use std::path::PathBuf;
+use support::files::{files_in, pack_in};
 
 fn scratch(name: &str) -> PathBuf {
     support::files::scratch("texture", name)

@@ -1,6 +1,7 @@
-//! Scratch directories and their listings.
+//! Scratch directories, their listings, and the `pack` binary run in one.
 
 use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 
 /// A fresh, empty scratch directory `grainpack-{prefix}-{pid}-{name}` in the system's
 /// temporary directory.
@@ -24,4 +25,13 @@ pub fn files_in(dir: &Path) -> Vec<String> {
         }
         Err(_) => Vec::new(),
     }
+}
+
+/// Runs the `pack` binary with `args` in `dir`, and waits for it.
+pub fn pack_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pack"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
 }
