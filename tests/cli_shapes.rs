@@ -209,6 +209,8 @@ fn measured_table_packs_exactly_its_grains_and_round_trips() {
     assert!((fraction - 0.5).abs() < 1e-12, "{fraction}");
     // The packed diameters are the table's: KS distance 0 against its step CDF.
     assert_eq!(summary["phases"][0]["diameter"]["ks_distance"], 0.0);
+    // And their shapes the table's: a1/a2 against the table's own a1/a2.
+    assert_eq!(summary["phases"][0]["aspect_ratio"]["ks_distance"], 0.0);
 
     // Round trip: the packed grains.csv, read back and drawn from with replacement.
     std::fs::write(

@@ -6,7 +6,7 @@ use super::quantity::{quantity, QuantityStatistics};
 use crate::contact::rotation_column;
 use crate::laws::{ks_distance, Distribution, EmpiricalLaw, Moments, VonMisesCdf};
 use crate::packing::PackedGrain;
-use crate::scene::{Orientation, Phase, Spin, ThirdRatio};
+use crate::scene::{aspect_ratio as aspect_ratio_of, Orientation, Phase, Spin, ThirdRatio};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -61,6 +61,16 @@ const SIMPSON_INTERVALS: usize = 2000;
 /// `aspect_ratio` law for spheroids; for triaxial grains the law of `1/β`, `β = b/a`:
 /// `P(a1/a2 ≤ x) = 1 − F_β(1/x)`, moments by Simpson's rule over `β`'s density.
 pub(crate) fn aspect_ratio(phase: &Phase, sample: &[f64]) -> QuantityStatistics {
+    // A measured table with semi-axes: the grains' shapes are the table's, so their
+    // law is the table's own (empirical) law of a1/a2.
+    if let Some(m) = phase.measured.as_ref().filter(|m| m.has_semi_axes()) {
+        let ratios: Vec<f64> = m
+            .grains
+            .iter()
+            .filter_map(|g| g.semi_axes.map(aspect_ratio_of))
+            .collect();
+        return quantity(&Distribution::Empirical(EmpiricalLaw::new(&ratios)), sample);
+    }
     let Some(t) = &phase.triaxial else {
         return quantity(&phase.aspect_ratio, sample);
     };
