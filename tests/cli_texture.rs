@@ -219,3 +219,34 @@ fn a_file_texture_gives_its_rows_and_the_solver_files_are_written() {
     assert_eq!(deck.matches("*Elset, elset=GRAIN_").count(), 12);
     assert!(deck.contains("*Equation") && deck.contains("*Material, name=PHASE0_FERRITE"));
 }
+
+#[test]
+fn the_scene_homogenization_goes_to_material_yaml_and_bad_ones_are_named() {
+    let random = "kind = \"random\"";
+    let homogenization = "[homogenization]\nname = \"direct\"\nmechanical = { type = \"pass\" }";
+    let dir = scratch("homogenization");
+    std::fs::write(dir.join("scene.toml"), scene(random, homogenization)).unwrap();
+    let run = pack_in(&dir, &["scene.toml", "--quiet"]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(0), "{err}");
+    let material = std::fs::read_to_string(dir.join("out/material.yaml")).unwrap();
+    // The entry as given, N_constituents added; every material refers to it.
+    assert!(
+        material.contains("homogenization:\n  \"direct\": {\"N_constituents\":1,\"mechanical\":{\"type\":\"pass\"}}"),
+        "{material}"
+    );
+    assert_eq!(material.matches("- homogenization: \"direct\"").count(), 12);
+
+    rejects(
+        "homogenization_two_constituents",
+        &scene(random, "[homogenization]\nN_constituents = 2"),
+        &[],
+        &["homogenization.N_constituents", "must be 1"],
+    );
+    rejects(
+        "homogenization_without_damask",
+        &scene(random, homogenization).replace("damask = true", "damask = false"),
+        &[],
+        &["homogenization", "output.damask = true"],
+    );
+}

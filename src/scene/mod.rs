@@ -34,6 +34,7 @@ mod output;
 mod params;
 mod shape;
 
+use crate::laws::Distribution;
 pub use crystal::{
     euler_to_quaternion, fibre_angle, fibre_angle_cdf, quaternion_to_euler, random_angle_cdf,
     rotate, rotation_angle, PhaseTexture, Texture,
@@ -51,8 +52,6 @@ pub use output::{
 };
 pub use params::{PackingParams, Rotation};
 pub use shape::{triaxial_semi_axes, ThirdRatio, Triaxial};
-
-use crate::laws::Distribution;
 use std::f64::consts::PI;
 
 /// The largest `target_fraction` accepted, and the largest expected packing fraction
@@ -83,6 +82,35 @@ pub struct Scene {
     pub output: OutputSpec,
     /// The matrix material of `rve_fill = "matrix"` (`[matrix]`).
     pub matrix: Matrix,
+    /// DAMASK's homogenization of every material (`[homogenization]`); `None` for the
+    /// default, [`Homogenization::single_crystal`].
+    pub homogenization: Option<Homogenization>,
+}
+
+/// The one `homogenization` entry of `material.yaml` that every material uses: each
+/// material is one grain, so one constituent.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Homogenization {
+    /// The entry's name, which every material refers to.
+    pub name: String,
+    /// The entry as written in the scene (without `name`), `N_constituents = 1` added
+    /// if absent.
+    pub entry: toml::Table,
+}
+
+impl Homogenization {
+    /// The default: `SX`, one constituent, `mechanical: {type: pass}`.
+    pub fn single_crystal() -> Self {
+        let mut entry = toml::Table::new();
+        entry.insert("N_constituents".into(), toml::Value::Integer(1));
+        let mut mechanical = toml::Table::new();
+        mechanical.insert("type".into(), toml::Value::String("pass".into()));
+        entry.insert("mechanical".into(), toml::Value::Table(mechanical));
+        Self {
+            name: "SX".into(),
+            entry,
+        }
+    }
 }
 
 /// The matrix material of a voxel RVE with `rve_fill = "matrix"` (`[matrix]`): the

@@ -3,7 +3,7 @@
 use super::names::matrix_name;
 use crate::io::voxel::VoxelGrid;
 use crate::packing::PackedGrain;
-use crate::scene::{Elastic, RveFill, Scene};
+use crate::scene::{Elastic, Homogenization, RveFill, Scene};
 use std::io::{self, Write};
 
 /// File name of DAMASK's material configuration.
@@ -19,7 +19,8 @@ pub const PLACEHOLDER_ELASTIC: Elastic = Elastic {
     poisson: 0.3,
 };
 
-/// Writes `material.yaml`: a `homogenization` `SX` (one constituent, `pass`), a
+/// Writes `material.yaml`: the scene's `homogenization` (default
+/// [`Homogenization::single_crystal`]: `SX`, one constituent, `pass`), a
 /// `phase` entry per scene phase (its `[phase.damask]` table as written, else an
 /// isotropic Hooke phase from `[phase.elastic]`, else [`PLACEHOLDER_ELASTIC`]), the
 /// matrix's when the grid has one, and the `material` list: entry `k` is grain `k` with
@@ -39,10 +40,15 @@ pub fn write_material_yaml(
         "# material k is grain k of grains.csv (and of rve.vti's `material`){}.",
         if matrix { ", the matrix last" } else { "" }
     )?;
+    let homogenization = scene
+        .homogenization
+        .clone()
+        .unwrap_or_else(Homogenization::single_crystal);
+    let entry = serde_json::to_string(&homogenization.entry).map_err(io::Error::other)?;
+    let h = json(&homogenization.name);
     writeln!(out, "homogenization:")?;
-    writeln!(out, "  SX:")?;
-    writeln!(out, "    N_constituents: 1")?;
-    writeln!(out, "    mechanical: {{type: pass}}")?;
+    // JSON is YAML (1.2): the scene's table goes through as written.
+    writeln!(out, "  {h}: {entry}")?;
     writeln!(out, "phase:")?;
     let mut names: Vec<&str> = scene.phases.iter().map(|p| p.name.as_str()).collect();
     for p in &scene.phases {
@@ -60,16 +66,21 @@ pub fn write_material_yaml(
     }
     writeln!(out, "material:")?;
     for (g, o) in grains.iter().zip(crystals) {
-        write_material(out, names[g.phase], *o)?;
+        write_material(out, &h, names[g.phase], *o)?;
     }
     if matrix {
-        write_material(out, names[names.len() - 1], [1.0, 0.0, 0.0, 0.0])?;
+        write_material(out, &h, names[names.len() - 1], [1.0, 0.0, 0.0, 0.0])?;
     }
     Ok(())
 }
 
-fn write_material(out: &mut dyn Write, phase: &str, o: [f64; 4]) -> io::Result<()> {
-    writeln!(out, "  - homogenization: SX")?;
+fn write_material(
+    out: &mut dyn Write,
+    homogenization: &str,
+    phase: &str,
+    o: [f64; 4],
+) -> io::Result<()> {
+    writeln!(out, "  - homogenization: {homogenization}")?;
     writeln!(out, "    constituents:")?;
     writeln!(
         out,

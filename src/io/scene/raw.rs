@@ -21,6 +21,8 @@ pub(crate) struct RawScene {
     pub packing: Opt<RawPacking>,
     pub output: Opt<RawOutput>,
     pub matrix: Opt<RawMatrix>,
+    /// `[homogenization]`: checked by validation, passed through to `material.yaml`.
+    pub homogenization: Opt<toml::Table>,
 }
 
 /// `[matrix]`: the matrix material of `rve_fill = "matrix"`.

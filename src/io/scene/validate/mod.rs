@@ -14,8 +14,9 @@ use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
-    mean_grain_volume, Boundary, Domain, GrainCount, Matrix, MeasuredMode, Orientation,
-    PackingParams, Phase, PhaseTexture, Rotation, RveFill, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
+    mean_grain_volume, Boundary, Domain, GrainCount, Homogenization, Matrix, MeasuredMode,
+    Orientation, PackingParams, Phase, PhaseTexture, Rotation, RveFill, Scene, MAX_GRAINS,
+    MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -81,9 +82,55 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         domain,
         phases,
         packing: packing(&src, raw.packing.as_ref())?,
+        homogenization: homogenization(&src, &raw, &output)?,
         output,
         matrix,
     })
+}
+
+/// `[homogenization]`: only with `output.damask`; `name` a non-empty string (default
+/// `SX`), `N_constituents` 1 (each material is one grain), the rest passed through.
+fn homogenization(
+    src: &Source,
+    raw: &RawScene,
+    output: &crate::scene::OutputSpec,
+) -> Result<Option<Homogenization>, SceneError> {
+    let Some(h) = &raw.homogenization else {
+        return Ok(None);
+    };
+    if !output.damask {
+        return Err(src.invalid_at(
+            "homogenization",
+            h,
+            "applies only to DAMASK's material.yaml (output.damask = true)",
+        ));
+    }
+    let mut entry = h.get_ref().clone();
+    let name = match entry.remove("name") {
+        None => "SX".to_owned(),
+        Some(toml::Value::String(s)) if !s.trim().is_empty() => s,
+        Some(_) => {
+            return Err(src.invalid_at(
+                "homogenization.name",
+                h,
+                "must be a non-empty string (the name every material refers to)",
+            ))
+        }
+    };
+    match entry.get("N_constituents") {
+        None => {
+            entry.insert("N_constituents".into(), toml::Value::Integer(1));
+        }
+        Some(toml::Value::Integer(1)) => {}
+        Some(_) => {
+            return Err(src.invalid_at(
+                "homogenization.N_constituents",
+                h,
+                "must be 1: each material of material.yaml is one grain",
+            ))
+        }
+    }
+    Ok(Some(Homogenization { name, entry }))
 }
 
 /// `[matrix]`: only with `rve_fill = "matrix"`, where there is a matrix.
