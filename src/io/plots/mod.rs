@@ -193,11 +193,20 @@ pub fn render_statistics_png(
     let width = width as u32;
     let mut rgb = vec![0u8; 3 * width as usize * height as usize];
     draw::figure(&mut rgb, (width, height), &rows, packed.len())?;
+    encode_rgb(out, (width, height), &rgb)
+}
+
+/// Encodes an RGB buffer of `width × height` pixels as PNG.
+fn encode_rgb(
+    out: &mut dyn Write,
+    (width, height): (u32, u32),
+    rgb: &[u8],
+) -> Result<(), PlotError> {
     let mut encoder = png::Encoder::new(out, width, height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     let mut writer = encoder.write_header()?;
-    writer.write_image_data(&rgb)?;
+    writer.write_image_data(rgb)?;
     writer.finish()?;
     Ok(())
 }

@@ -8,7 +8,7 @@
 //! axes), so a random texture covers the disc evenly.
 
 use super::draw::{failed, register_font, FONT};
-use super::PlotError;
+use super::{encode_rgb, PlotError};
 use crate::packing::PackedGrain;
 use crate::scene::{rotate, Phase, Texture};
 use plotters::prelude::*;
@@ -107,13 +107,7 @@ pub fn render_pole_figures_png(
         }
         root.present().map_err(failed("the pole figures"))?;
     }
-    let mut encoder = png::Encoder::new(out, width, height);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header()?;
-    writer.write_image_data(&rgb)?;
-    writer.finish()?;
-    Ok(())
+    encode_rgb(out, (width, height), &rgb)
 }
 
 #[cfg(test)]
