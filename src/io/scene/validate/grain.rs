@@ -125,20 +125,7 @@ pub(super) fn orientation(
             ],
         ),
     };
-    for (param, span) in given {
-        if let (Some(span), false) = (span, takes.contains(&param)) {
-            let takes = if takes.is_empty() {
-                "no other key".to_owned()
-            } else {
-                takes.join(", ")
-            };
-            return Err(src.invalid(
-                format!("{key}.{param}"),
-                span,
-                format!("does not apply to kind = \"{name}\", which takes {takes}"),
-            ));
-        }
-    }
+    foreign_keys(src, key, name, &given, takes, "no other key")?;
     match kind {
         RawKind::Random => Ok(Orientation::Random),
         RawKind::Fixed => {
@@ -218,4 +205,31 @@ fn tilt(src: &Source, key: &str, raw: &Spanned<RawOrientation>) -> Result<Orient
         )
     })?;
     Ok(Orientation::Tilt { axis, angle })
+}
+
+/// The first of the `given` keys (name, where it stands) that kind `name` does not take
+/// (`takes`), as an error naming it and what the kind takes (`nothing` if none).
+pub(super) fn foreign_keys(
+    src: &Source,
+    key: &str,
+    name: &str,
+    given: &[(&str, Option<Range<usize>>)],
+    takes: &[&str],
+    nothing: &str,
+) -> Result<(), SceneError> {
+    for (param, span) in given {
+        if let (Some(span), false) = (span, takes.contains(param)) {
+            let takes = if takes.is_empty() {
+                nothing.to_owned()
+            } else {
+                takes.join(", ")
+            };
+            return Err(src.invalid(
+                format!("{key}.{param}"),
+                span.clone(),
+                format!("does not apply to kind = \"{name}\", which takes {takes}"),
+            ));
+        }
+    }
+    Ok(())
 }

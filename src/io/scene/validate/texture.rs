@@ -39,20 +39,14 @@ pub(super) fn texture(
         RawTextureKind::Fibre => ("fibre", &["crystal_direction", "sample_direction", "kappa"]),
         RawTextureKind::File => ("file", &["file"]),
     };
-    for (param, span) in given {
-        if let (Some(span), false) = (span, takes.contains(&param)) {
-            let takes = if takes.is_empty() {
-                "no other key but relative_to_shape".to_owned()
-            } else {
-                takes.join(", ")
-            };
-            return Err(src.invalid(
-                format!("{key}.{param}"),
-                span,
-                format!("does not apply to kind = \"{name}\", which takes {takes}"),
-            ));
-        }
-    }
+    super::grain::foreign_keys(
+        src,
+        key,
+        name,
+        &given,
+        takes,
+        "no other key but relative_to_shape",
+    )?;
     let relative_to_shape = match &t.relative_to_shape {
         Some(r) if *r.get_ref() && kind == RawTextureKind::Random => {
             return Err(src.invalid_at(
