@@ -1,7 +1,8 @@
 //! Drawing the statistics figure with plotters, into an RGB buffer.
 
 use super::histogram::{aligned_bins, freedman_diaconis_bins, Histogram};
-use super::panel::{Panel, Row, Target};
+use super::panel::{Panel, Row};
+use super::target::Target;
 use super::{PlotError, COLUMNS, PANEL_WIDTH, TITLE_HEIGHT};
 use crate::laws::Moments;
 use plotters::coord::Shift;

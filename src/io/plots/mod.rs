@@ -34,6 +34,7 @@ mod draw;
 mod histogram;
 mod panel;
 mod poles;
+mod target;
 
 pub use histogram::{aligned_bins, freedman_diaconis_bins, Histogram, MAX_BINS, MIN_BINS};
 pub use panel::axis_polar_angle;
