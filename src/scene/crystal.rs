@@ -17,7 +17,9 @@
 //! are written in degrees, `φ1, φ2 ∈ [0, 360)`, `Φ ∈ [0, 180]`. The test
 //! `tools/check_orientations.py` compares both conversions with `damask.Rotation`.
 
+use super::fisher::{fisher_direction, perpendicular};
 use super::orientation::{canonical, multiply};
+use crate::laws::Fisher;
 use rand::distr::weighted::WeightedIndex;
 use rand::distr::Distribution as _;
 use rand::Rng;
@@ -122,7 +124,7 @@ impl Texture {
                 sample,
                 kappa,
             } => {
-                let d = von_mises_fisher(*sample, *kappa, rng);
+                let d = fisher_direction(*sample, &Fisher { kappa: *kappa }, rng);
                 let turn = axis_angle(d, 2.0 * PI * rng.random::<f64>());
                 canonical(multiply(turn, shortest(*crystal, d)))
             }
@@ -188,17 +190,6 @@ pub fn random_angle_cdf(omega: f64) -> f64 {
     ((omega - omega.sin()) / PI).clamp(0.0, 1.0)
 }
 
-/// The CDF of the angle θ between a fibre's crystal direction and its sample direction
-/// under the von Mises–Fisher law of concentration κ:
-/// `(1 − e^{−κ(1 − cos θ)}) / (1 − e^{−2κ})`, and `(1 − cos θ)/2` for κ = 0.
-pub fn fibre_angle_cdf(theta: f64, kappa: f64) -> f64 {
-    let one_minus_cos = 2.0 * (0.5 * theta).sin().powi(2);
-    if kappa == 0.0 {
-        return (0.5 * one_minus_cos).clamp(0.0, 1.0);
-    }
-    ((-kappa * one_minus_cos).exp_m1() / (-2.0 * kappa).exp_m1()).clamp(0.0, 1.0)
-}
-
 /// The angle (radians) between the sample direction of a fibre and its crystal
 /// direction `crystal` turned by `q`.
 pub fn fibre_angle(q: [f64; 4], crystal: [f64; 3], sample: [f64; 3]) -> f64 {
@@ -246,39 +237,10 @@ fn shortest(a: [f64; 3], b: [f64; 3]) -> [f64; 4] {
     // 1 + a·b loses all digits only within ~1e-8 rad of antiparallel; the half turn
     // is exact there.
     if n < 1e-8 {
-        let (e1, _) = normals(a);
+        let e1 = perpendicular(a);
         return [0.0, e1[0], e1[1], e1[2]];
     }
     q.map(|v| v / n)
-}
-
-/// Two unit vectors completing the unit vector `n` to a right-handed frame.
-fn normals(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let pick = if n[0].abs() < 0.9 {
-        [1.0, 0.0, 0.0]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
-    let e1 = cross(n, pick);
-    let l = norm(e1);
-    let e1 = e1.map(|v| v / l);
-    (e1, cross(n, e1))
-}
-
-/// A unit vector from the von Mises–Fisher law on the sphere about `mean` with
-/// concentration `kappa`: `cos θ` by inverting its CDF, the azimuth uniform.
-fn von_mises_fisher<R: Rng + ?Sized>(mean: [f64; 3], kappa: f64, rng: &mut R) -> [f64; 3] {
-    // In (0, 1], so that the logarithm below is finite.
-    let u = 1.0 - rng.random::<f64>();
-    let t = if kappa == 0.0 {
-        2.0 * u - 1.0
-    } else {
-        (1.0 + (u + (1.0 - u) * (-2.0 * kappa).exp()).ln() / kappa).clamp(-1.0, 1.0)
-    };
-    let psi = 2.0 * PI * rng.random::<f64>();
-    let (e1, e2) = normals(mean);
-    let r = (1.0 - t * t).max(0.0).sqrt();
-    [0, 1, 2].map(|i| t * mean[i] + r * (psi.cos() * e1[i] + psi.sin() * e2[i]))
 }
 
 #[cfg(test)]
@@ -358,7 +320,7 @@ mod tests {
             let angles: Vec<f64> = (0..DRAWS)
                 .map(|_| fibre_angle(texture.sample(&mut rng), crystal, sample))
                 .collect();
-            let d = ks_distance(&angles, |t| fibre_angle_cdf(t, kappa)).unwrap();
+            let d = ks_distance(&angles, |t| Fisher { kappa }.angle_cdf(t)).unwrap();
             assert!(d < ks_critical(), "kappa {kappa}: KS {d}");
         }
     }

@@ -54,6 +54,23 @@ pub fn perpendicular(e: [f64; 3]) -> [f64; 3] {
     [p.x, p.y, p.z]
 }
 
+/// A unit vector drawn from the von Mises–Fisher law about the unit vector `mean`:
+/// `cos θ` from `fisher`, the azimuth uniform about `mean`.
+pub(crate) fn fisher_direction<R: Rng + ?Sized>(
+    mean: [f64; 3],
+    fisher: &Fisher,
+    rng: &mut R,
+) -> [f64; 3] {
+    let mu = v(mean);
+    let t1 = v(perpendicular(mean));
+    let t2 = mu.cross(&t1);
+    let w = fisher.sample_cos_angle(rng);
+    let phi = 2.0 * PI * rng.random::<f64>();
+    let s = (1.0 - w * w).max(0.0).sqrt();
+    let e = (mu * w + (t1 * phi.cos() + t2 * phi.sin()) * s).normalize();
+    [e.x, e.y, e.z]
+}
+
 /// `r` projected on the plane normal to the unit vector `e` and normalised, or
 /// [`perpendicular`]`(e)` when `r` is (numerically) along `e`.
 fn projected(r: [f64; 3], e: [f64; 3]) -> Vector3<f64> {
@@ -80,13 +97,7 @@ impl FisherOrientation {
     /// Draws an orientation: the quaternion `[w, x, y, z]` (w ≥ 0). `None` if the spin
     /// law's rejection sampling gave up.
     pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> Option<[f64; 4]> {
-        let mu = v(self.mean);
-        let t1 = v(perpendicular(self.mean));
-        let t2 = mu.cross(&t1);
-        let w = self.fisher.sample_cos_angle(rng);
-        let phi = 2.0 * PI * rng.random::<f64>();
-        let s = (1.0 - w * w).max(0.0).sqrt();
-        let e = (mu * w + (t1 * phi.cos() + t2 * phi.sin()) * s).normalize();
+        let e = v(fisher_direction(self.mean, &self.fisher, rng));
         let psi = match self.spin {
             Spin::Uniform => 2.0 * PI * rng.random::<f64>() - PI,
             Spin::VonMises { angle, .. } => angle.sample(rng)?,

@@ -36,8 +36,8 @@ mod shape;
 
 use crate::laws::Distribution;
 pub use crystal::{
-    euler_to_quaternion, fibre_angle, fibre_angle_cdf, quaternion_to_euler, random_angle_cdf,
-    rotate, rotation_angle, PhaseTexture, Texture,
+    euler_to_quaternion, fibre_angle, quaternion_to_euler, random_angle_cdf, rotate,
+    rotation_angle, PhaseTexture, Texture,
 };
 pub use domain::{Boundary, Domain};
 pub use elastic::Elastic;

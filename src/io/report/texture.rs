@@ -1,10 +1,8 @@
 //! The achieved texture of each phase against its target law, for `summary.json`.
 
-use crate::laws::ks_distance;
+use crate::laws::{ks_distance, Fisher};
 use crate::run::RunResult;
-use crate::scene::{
-    fibre_angle, fibre_angle_cdf, random_angle_cdf, rotation_angle, Scene, Texture,
-};
+use crate::scene::{fibre_angle, random_angle_cdf, rotation_angle, Scene, Texture};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -124,7 +122,7 @@ pub fn texture_summaries(
                             .iter()
                             .map(|&q| fibre_angle(q, *crystal, *sample))
                             .collect(),
-                        Some(Box::new(move |x| fibre_angle_cdf(x, kappa))),
+                        Some(Box::new(move |x| Fisher { kappa }.angle_cdf(x))),
                     )
                 }
                 Texture::File { .. } => (None, Vec::new(), None),
