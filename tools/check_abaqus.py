@@ -14,13 +14,13 @@ Exit code 0 when every check passes, 1 with the failures listed otherwise.
 """
 
 import csv
-import json
 import os
 import sys
 
 import damask
 import meshio
 import numpy as np
+from checklist import Checklist
 
 # Node coordinates are i·L/N printed to 17 significant digits: a plane is found to a
 # few ulp of the box size.
@@ -28,18 +28,8 @@ PLANE_TOL = 1e-9
 
 
 def main():
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    out = sys.argv[1]
-    failures = []
-
-    def check(ok, message):
-        if not ok:
-            failures.append(message)
-
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
+    check = Checklist(__doc__)
+    out, summary = check.out, check.summary
     mesh = meshio.read(os.path.join(out, "rve.inp"), file_format="abaqus")
     grid = damask.GeomGrid.load(os.path.join(out, "rve.vti"))
     n = np.array(grid.cells)
@@ -81,10 +71,7 @@ def main():
     grains = sum(1 for k in mesh.cell_sets if k.startswith("GRAIN_"))
     print(f"rve.inp: {len(conn)} C3D8 elements, {len(mesh.points)} nodes, {grains} grain sets, "
           f"{len(sets)} face/edge/corner node sets")
-    if failures:
-        print("FAILED:\n  " + "\n  ".join(failures))
-        return 1
-    return 0
+    return check.exit_code()
 
 
 if __name__ == "__main__":

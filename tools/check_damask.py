@@ -19,12 +19,12 @@ Exit code 0 when every check passes, 1 with the failures listed otherwise.
 """
 
 import csv
-import json
 import os
 import sys
 
 import damask
 import numpy as np
+from checklist import Checklist
 
 # The brief's agreement of orientations with DAMASK's (the Euler angles are printed with
 # 17 significant digits, so the conversion's rounding, ~1e-16, is all that differs).
@@ -34,18 +34,8 @@ SIZE_TOL = 1e-12
 
 
 def main():
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    out = sys.argv[1]
-    failures = []
-
-    def check(ok, message):
-        if not ok:
-            failures.append(message)
-
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
+    check = Checklist(__doc__)
+    out, summary = check.out, check.summary
     with open(os.path.join(out, "grains.csv")) as f:
         grains = list(csv.DictReader(f))
     cfg = damask.ConfigMaterial.load(os.path.join(out, "material.yaml"))
@@ -99,10 +89,7 @@ def main():
     check(len(load["loadstep"]) == 1, "load.yaml has no single load step")
     print(f"material.yaml: {len(materials)} materials, complete and valid; rve.vti {[int(c) for c in grid.cells]} "
           f"cells; orientations agree with DAMASK's to {worst:.1e}")
-    if failures:
-        print("FAILED:\n  " + "\n  ".join(failures))
-        return 1
-    return 0
+    return check.exit_code()
 
 
 if __name__ == "__main__":
