@@ -70,21 +70,10 @@ impl RveSummary {
     }
 }
 
-/// Writes the RVE files and the statistics figure asked for by `output`; returns the
-/// RVE's totals when one was written.
+/// Writes the RVE files and the statistics figure asked for by `output`, calling
+/// `beside_rve` with the voxel grid once `rve.vti` is written (for the files written on
+/// its cells: DAMASK's and Abaqus'); returns the RVE's totals when one was written.
 pub fn write_derived(
-    output: &OutputSpec,
-    phases: &[Phase],
-    domain: &Domain,
-    grains: &[PackedGrain],
-    files: &mut OutputFiles,
-) -> Result<Option<RveSummary>, ReportError> {
-    write_derived_with(output, phases, domain, grains, files, |_, _| Ok(()))
-}
-
-/// [`write_derived`], calling `beside_rve` with the voxel grid once `rve.vti` is
-/// written (for the files written on its cells: DAMASK's and Abaqus').
-pub fn write_derived_with(
     output: &OutputSpec,
     phases: &[Phase],
     domain: &Domain,

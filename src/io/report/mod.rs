@@ -23,8 +23,7 @@ mod summary;
 mod texture;
 
 pub use derived::{
-    write_derived, write_derived_with, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG,
-    STATISTICS_PNG,
+    write_derived, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
 };
 
 pub use summary::{CounterSummary, Summary, TimingSummary};
@@ -178,7 +177,7 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
             render_pole_figures_png(w, &scene.phases, grains, &crystals).map_err(io::Error::other)
         })?;
     }
-    let rve = write_derived_with(
+    let rve = write_derived(
         output,
         &scene.phases,
         domain,
