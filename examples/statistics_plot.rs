@@ -52,7 +52,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             })
             .collect()
     });
-    write_statistics_png(&out, &scene.phases, &packed, voxel.as_deref())?;
+    write_statistics_png(&out, &scene.phases, &packed, voxel.as_deref(), &[])?;
     eprintln!(
         "wrote {} ({} grains of {})",
         out.display(),

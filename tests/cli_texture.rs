@@ -218,6 +218,27 @@ fn a_file_texture_gives_its_rows_and_the_solver_files_are_written() {
     let deck = std::fs::read_to_string(dir.join("out/rve.inp")).unwrap();
     assert_eq!(deck.matches("*Elset, elset=GRAIN_").count(), 12);
     assert!(deck.contains("*Equation") && deck.contains("*Material, name=PHASE0_FERRITE"));
+    // The file's law of the rotation angle: atoms at 0 (identity) and 120° (the other
+    // row), 1/2 each; the grains' empirical law differs from it by |n₀/12 − 1/2| at
+    // both atoms.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap())
+            .unwrap();
+    let texture = &summary["textures"][0];
+    assert_eq!(texture["measure"], "rotation angle");
+    assert_eq!(texture["file_rows"], 2);
+    let ks = texture["ks_distance"].as_f64().unwrap();
+    // Rotation angles of exact rows: 2·atan2(√3/2, 1/2) = 120° up to rounding.
+    assert!(
+        (ks - (seen[1] as f64 / 12.0 - 0.5).abs()).abs() < 1e-12,
+        "{ks} {seen:?}"
+    );
+    let mean = texture["target_mean_deg"].as_f64().unwrap();
+    assert!((mean - 60.0).abs() < 1e-12, "{mean}");
+    // statistics.png has the texture column: four panels of 600 pixels across.
+    let png = std::fs::read(dir.join("out/statistics.png")).unwrap();
+    let width = u32::from_be_bytes(png[16..20].try_into().unwrap());
+    assert_eq!(width, 4 * 600);
 }
 
 #[test]

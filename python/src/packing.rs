@@ -2,7 +2,10 @@
 //! the CLI's outputs on request.
 
 use crate::errors::chain;
-use grainpack::io::report::{crystal_orientations, write_grains_csv, write_outputs, Summary};
+use grainpack::io::report::{
+    crystal_orientations, texture_summaries, write_grains_csv, write_outputs, Summary,
+};
+use grainpack::io::texture::measure_textures;
 use grainpack::io::voxel::voxelise;
 use grainpack::run::RunResult;
 use grainpack::scene::{proportional_cells, RveFill, Scene};
@@ -42,7 +45,10 @@ impl PyPacking {
         if let Some(written) = &*self.written_summary.lock().expect("never poisoned") {
             return written.clone();
         }
-        let summary = Summary::new(&self.scene, &self.result, None, 0.0);
+        let crystals = crystal_orientations(&self.scene, &self.result);
+        let measures = measure_textures(&self.scene, &self.result, &crystals);
+        let textures = texture_summaries(&self.scene, &measures);
+        let summary = Summary::new(&self.scene, &self.result, None, textures, 0.0);
         serde_json::to_string(&summary).expect("a summary serializes")
     }
 }
@@ -116,7 +122,13 @@ impl PyPacking {
             .detach(|| write_outputs(&scene, result))
             .map_err(|e| PyOSError::new_err(chain(&e)))?;
         if scene.output.summary_json {
-            let summary = Summary::new(&scene, result, written.rve.as_ref(), written.seconds);
+            let summary = Summary::new(
+                &scene,
+                result,
+                written.rve.as_ref(),
+                written.textures.clone(),
+                written.seconds,
+            );
             let json = serde_json::to_string(&summary).expect("a summary serializes");
             *self.written_summary.lock().expect("never poisoned") = Some(json);
         }

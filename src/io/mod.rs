@@ -6,5 +6,6 @@ pub mod decks;
 pub mod plots;
 pub mod report;
 pub mod scene;
+pub mod texture;
 pub mod voxel;
 pub mod vtk;

@@ -3,7 +3,7 @@
 use super::histogram::{aligned_bins, freedman_diaconis_bins, Histogram};
 use super::panel::{Panel, Row};
 use super::target::Target;
-use super::{PlotError, COLUMNS, PANEL_WIDTH, TITLE_HEIGHT};
+use super::{PlotError, PANEL_WIDTH, TITLE_HEIGHT};
 use crate::laws::Moments;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -70,6 +70,7 @@ pub(super) fn figure(
     rgb: &mut [u8],
     size: (u32, u32),
     rows: &[Row],
+    columns: u32,
     grains: usize,
 ) -> Result<(), PlotError> {
     register_font()?;
@@ -96,7 +97,7 @@ pub(super) fn figure(
         let (heading, panels) = area.split_vertically(HEADING_HEIGHT);
         heading
             .draw(&PathElement::new(
-                vec![(16, 0), ((COLUMNS * PANEL_WIDTH) as i32 - 16, 0)],
+                vec![(16, 0), ((columns * PANEL_WIDTH) as i32 - 16, 0)],
                 BLACK.mix(0.25).stroke_width(1),
             ))
             .map_err(failed(&row.title))?;
@@ -113,7 +114,7 @@ pub(super) fn figure(
         for (panel, area) in row
             .panels
             .iter()
-            .zip(panels.split_evenly((1, COLUMNS as usize)))
+            .zip(panels.split_evenly((1, columns as usize)))
         {
             draw_panel(&area, panel).map_err(|e| match e {
                 PlotError::Draw { what, message } => PlotError::Draw {

@@ -10,7 +10,10 @@
 //!   von Mises pdf; for any other orientation, the angle of the first semi-axis to z
 //!   ([`axis_polar_angle`]) against the isotropic density `sin θ` (random orientations)
 //!   or a single value (aligned, fixed). The panel is never left out, so every figure has
-//!   three columns and a random orientation's isotropy can be checked by eye.
+//!   three columns and a random orientation's isotropy can be checked by eye;
+//! - the **crystal texture**, a fourth column when textures are given
+//!   ([`TextureMeasure`]): the angle that measures the phase's texture against its
+//!   law under the target, with the KS distance of `summary.json`.
 //!
 //! Histograms are densities (total area 1) on Freedman–Diaconis bins
 //! ([`freedman_diaconis_bins`]) whose edges fall on the law's cutoffs ([`aligned_bins`]). A constant or fixed law is a vertical line at its
@@ -26,7 +29,7 @@
 //! use grainpack::scene::Scene;
 //! # fn packed() -> Vec<grainpack::packing::PackedGrain> { vec![] }
 //! let scene = Scene::from_path("configs/grains.toml".as_ref())?;
-//! write_statistics_png("out/statistics.png".as_ref(), &scene.phases, &packed(), None)?;
+//! write_statistics_png("out/statistics.png".as_ref(), &scene.phases, &packed(), None, &[])?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -35,12 +38,14 @@ mod histogram;
 mod panel;
 mod poles;
 mod target;
+mod texture;
 
 pub use histogram::{aligned_bins, freedman_diaconis_bins, Histogram, MAX_BINS, MIN_BINS};
 pub use panel::axis_polar_angle;
 pub use poles::{equal_area, render_pole_figures_png};
 
 use crate::io::atomic::write_atomically;
+use crate::io::texture::TextureMeasure;
 use crate::packing::PackedGrain;
 use crate::scene::Phase;
 use std::io::{self, Write};
@@ -59,7 +64,8 @@ pub const TITLE_HEIGHT: u32 = 60;
 /// `3 · 1800 · 16384` bytes, 88 MB.
 pub const MAX_HEIGHT: u32 = 1 << 14;
 
-/// Panels per row: equivalent diameter, aspect ratio, angle.
+/// Panels per row: equivalent diameter, aspect ratio, angle (and the crystal
+/// texture, when textures are given: one column more).
 pub const COLUMNS: u32 = 3;
 
 /// One grain measured in a voxel RVE, to compare with the packed grain it renders.
@@ -142,11 +148,16 @@ pub enum PlotError {
 }
 
 /// The size in pixels `(width, height)` of the figure for `phases` phases:
-/// [`COLUMNS`] panels of [`PANEL_WIDTH`] across, a [`TITLE_HEIGHT`] strip and one
-/// [`ROW_HEIGHT`] row per phase down.
+/// [`COLUMNS`] panels of [`PANEL_WIDTH`] across (one more with textures), a
+/// [`TITLE_HEIGHT`] strip and one [`ROW_HEIGHT`] row per phase down.
 pub fn statistics_png_size(phases: usize) -> (u64, u64) {
+    figure_size(phases, COLUMNS)
+}
+
+/// The size in pixels of a figure of `phases` rows of `columns` panels.
+fn figure_size(phases: usize, columns: u32) -> (u64, u64) {
     (
-        u64::from(COLUMNS * PANEL_WIDTH),
+        u64::from(columns * PANEL_WIDTH),
         u64::from(TITLE_HEIGHT) + phases as u64 * u64::from(ROW_HEIGHT),
     )
 }
@@ -155,15 +166,18 @@ pub fn statistics_png_size(phases: usize) -> (u64, u64) {
 /// renamed over `path` when complete ([`write_atomically`]).
 ///
 /// `packed` are the grains as packed (their phase indices into `phases`); `voxel`, the
-/// same grains measured in a voxel RVE, adds a second outline to each panel.
+/// same grains measured in a voxel RVE, adds a second outline to each panel;
+/// `textures` (from [`measure_textures`](crate::io::texture::measure_textures)) add
+/// a texture panel to the row of each phase they measure.
 pub fn write_statistics_png(
     path: &Path,
     phases: &[Phase],
     packed: &[PackedGrain],
     voxel: Option<&[VoxelSample]>,
+    textures: &[TextureMeasure],
 ) -> Result<(), PlotError> {
     let mut png = Vec::new();
-    render_statistics_png(&mut png, phases, packed, voxel)?;
+    render_statistics_png(&mut png, phases, packed, voxel, textures)?;
     write_atomically(path, |w| w.write_all(&png)).map_err(|source| PlotError::Write {
         path: path.to_owned(),
         source,
@@ -178,12 +192,19 @@ pub fn render_statistics_png(
     phases: &[Phase],
     packed: &[PackedGrain],
     voxel: Option<&[VoxelSample]>,
+    textures: &[TextureMeasure],
 ) -> Result<(), PlotError> {
     if phases.is_empty() {
         return Err(PlotError::NoPhases);
     }
-    let rows = panel::rows(phases, packed, voxel)?;
-    let (width, height) = statistics_png_size(phases.len());
+    let mut rows = panel::rows(phases, packed, voxel)?;
+    for m in textures {
+        if let Some(row) = rows.get_mut(m.phase) {
+            row.panels.push(texture::texture_panel(m));
+        }
+    }
+    let columns = rows.iter().map(|r| r.panels.len()).max().unwrap_or(0) as u32;
+    let (width, height) = figure_size(phases.len(), columns);
     let height = u32::try_from(height)
         .ok()
         .filter(|&h| h <= MAX_HEIGHT)
@@ -193,7 +214,7 @@ pub fn render_statistics_png(
         })?;
     let width = width as u32;
     let mut rgb = vec![0u8; 3 * width as usize * height as usize];
-    draw::figure(&mut rgb, (width, height), &rows, packed.len())?;
+    draw::figure(&mut rgb, (width, height), &rows, columns, packed.len())?;
     encode_rgb(out, (width, height), &rgb)
 }
 

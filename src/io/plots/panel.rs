@@ -58,8 +58,8 @@ pub(super) struct Panel {
 pub(super) struct Row {
     /// The row's heading.
     pub title: String,
-    /// Equivalent diameter, aspect ratio, angle.
-    pub panels: [Panel; 3],
+    /// Equivalent diameter, aspect ratio, angle; then the crystal texture, when shown.
+    pub panels: Vec<Panel>,
 }
 
 /// The rows of the figure, one per phase, after checking that every grain and voxel
@@ -164,7 +164,7 @@ pub(super) fn rows(
             angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
             Row {
                 title,
-                panels: [diameter, aspect, angle],
+                panels: vec![diameter, aspect, angle],
             }
         })
         .collect())

@@ -76,7 +76,7 @@ fn figure_is_written_as_a_png_of_the_documented_size() {
     let dir = std::env::temp_dir().join(format!("grainpack-plots-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("statistics.png");
-    write_statistics_png(&path, &phases, &packed, None).unwrap();
+    write_statistics_png(&path, &phases, &packed, None, &[]).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
     let (width, height, pixels) = decode(&bytes);
@@ -97,10 +97,10 @@ fn figure_is_written_as_a_png_of_the_documented_size() {
 fn voxel_outline_is_drawn_only_when_voxel_samples_are_given() {
     let (phases, packed) = grains();
     let mut without = Vec::new();
-    render_statistics_png(&mut without, &phases, &packed, None).unwrap();
+    render_statistics_png(&mut without, &phases, &packed, None, &[]).unwrap();
     let mut with = Vec::new();
     let voxel = voxel_samples(&packed);
-    render_statistics_png(&mut with, &phases, &packed, Some(&voxel)).unwrap();
+    render_statistics_png(&mut with, &phases, &packed, Some(&voxel), &[]).unwrap();
     let (_, _, without) = decode(&without);
     let (_, _, with) = decode(&with);
     assert_eq!(count(&without, draw::VOXEL), 0);
@@ -113,7 +113,7 @@ fn phases_out_of_range_are_typed_errors() {
     let mut voxel = voxel_samples(&packed);
     voxel[5].phase = 7;
     let mut sink = Vec::new();
-    match render_statistics_png(&mut sink, &phases, &packed, Some(&voxel)) {
+    match render_statistics_png(&mut sink, &phases, &packed, Some(&voxel), &[]) {
         Err(PlotError::VoxelPhase {
             index: 5,
             phase: 7,
@@ -122,13 +122,13 @@ fn phases_out_of_range_are_typed_errors() {
         other => panic!("{other:?}"),
     }
     packed[3].phase = 2;
-    let err = render_statistics_png(&mut sink, &phases, &packed, None).unwrap_err();
+    let err = render_statistics_png(&mut sink, &phases, &packed, None, &[]).unwrap_err();
     assert_eq!(
         err.to_string(),
         "grain 3 has phase index 2, but the scene has 2 phases"
     );
     assert!(matches!(
-        render_statistics_png(&mut sink, &[], &[], None),
+        render_statistics_png(&mut sink, &[], &[], None, &[]),
         Err(PlotError::NoPhases)
     ));
     assert!(sink.is_empty());
@@ -139,7 +139,7 @@ fn a_phase_without_grains_still_gets_its_row() {
     let (phases, packed) = grains();
     let only_first: Vec<PackedGrain> = packed.into_iter().filter(|g| g.phase == 0).collect();
     let mut png = Vec::new();
-    render_statistics_png(&mut png, &phases, &only_first, None).unwrap();
+    render_statistics_png(&mut png, &phases, &only_first, None, &[]).unwrap();
     let (width, height, _) = decode(&png);
     assert_eq!(
         (u64::from(width), u64::from(height)),
@@ -153,7 +153,35 @@ fn unwritable_path_is_a_write_error_naming_it() {
     let path = std::env::temp_dir()
         .join(format!("grainpack-no-such-dir-{}", std::process::id()))
         .join("statistics.png");
-    let err = write_statistics_png(&path, &phases, &packed, None).unwrap_err();
+    let err = write_statistics_png(&path, &phases, &packed, None, &[]).unwrap_err();
     assert!(matches!(&err, PlotError::Write { path: p, .. } if *p == path));
     assert!(err.to_string().contains("statistics.png"));
+}
+
+#[test]
+fn a_texture_adds_a_fourth_column_with_its_target_curve() {
+    use crate::io::texture::{AngleLaw, TextureMeasure};
+    let (phases, packed) = grains();
+    let mut plain = Vec::new();
+    render_statistics_png(&mut plain, &phases, &packed, None, &[]).unwrap();
+    let measure = TextureMeasure {
+        phase: 1,
+        measure: "rotation angle",
+        angles: vec![2.0, 2.5, 1.0],
+        law: AngleLaw::Haar,
+        ks_distance: AngleLaw::Haar.ks_distance(&[2.0, 2.5, 1.0]),
+    };
+    let mut textured = Vec::new();
+    render_statistics_png(&mut textured, &phases, &packed, None, &[measure]).unwrap();
+    let (w0, h0, p0) = decode(&plain);
+    let (w1, h1, p1) = decode(&textured);
+    assert_eq!((w0, w1, h0, h1), (1800, 2400, h1, 60 + 2 * 470));
+    // One more target curve drawn, in the new column only.
+    assert!(count(&p1, draw::TARGET) > count(&p0, draw::TARGET) + 300);
+    let right = p1
+        .chunks_exact(w1 as usize)
+        .flat_map(|row| &row[1800..])
+        .filter(|p| **p == [draw::TARGET.0, draw::TARGET.1, draw::TARGET.2])
+        .count();
+    assert!(right > 300, "{right}");
 }

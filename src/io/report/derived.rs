@@ -5,6 +5,7 @@
 use super::{OutputFiles, ReportError};
 use crate::contact::{dot, rotation_column, sphere_diameter};
 use crate::io::plots::{render_statistics_png, VoxelSample};
+use crate::io::texture::TextureMeasure;
 use crate::io::voxel::{
     grain_report, voxelise, write_sections_png, write_vti, VoxelGrid, VoxelReport,
 };
@@ -73,11 +74,14 @@ impl RveSummary {
 /// Writes the RVE files and the statistics figure asked for by `output`, calling
 /// `beside_rve` with the voxel grid once `rve.vti` is written (for the files written on
 /// its cells: DAMASK's and Abaqus'); returns the RVE's totals when one was written.
+/// The statistics figure shows the texture of each phase in `textures` (none: no
+/// texture panels).
 pub fn write_derived(
     output: &OutputSpec,
     phases: &[Phase],
     domain: &Domain,
     grains: &[PackedGrain],
+    textures: &[TextureMeasure],
     files: &mut OutputFiles,
     beside_rve: impl FnOnce(&VoxelGrid, &mut OutputFiles) -> Result<(), ReportError>,
 ) -> Result<Option<RveSummary>, ReportError> {
@@ -104,7 +108,8 @@ pub fn write_derived(
     }
     if output.statistics_png {
         files.write(STATISTICS_PNG, |w| {
-            render_statistics_png(w, phases, grains, samples.as_deref()).map_err(io::Error::other)
+            render_statistics_png(w, phases, grains, samples.as_deref(), textures)
+                .map_err(io::Error::other)
         })?;
     }
     Ok(summary)

@@ -26,8 +26,9 @@ pub use derived::{
     write_derived, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
 };
 
+pub use crate::io::texture::crystal_orientations;
 pub use summary::{CounterSummary, Summary, TimingSummary};
-pub use texture::{crystal_orientations, texture_summaries, TextureSummary};
+pub use texture::{texture_summaries, TextureSummary};
 
 use crate::io::atomic::write_atomically;
 use crate::io::cases::format_17;
@@ -36,9 +37,8 @@ use crate::io::decks::{
     MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
 };
 use crate::io::plots::render_pole_figures_png;
-use crate::io::vtk::{
-    write_centers_vtp_oriented, write_grains_vtu_oriented, CENTERS_VTP, GRAINS_VTU,
-};
+use crate::io::texture::measure_textures;
+use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
 use crate::packing::PackedGrain;
 use crate::run::RunResult;
 use crate::scene::{quaternion_to_euler, PhaseTexture, Scene};
@@ -136,6 +136,8 @@ pub struct Written {
     pub files: Vec<PathBuf>,
     /// How well the voxel RVE renders the grains, when one was written.
     pub rve: Option<RveSummary>,
+    /// Each phase's crystal orientations against its texture (as in the summary).
+    pub textures: Vec<TextureSummary>,
     /// Seconds spent writing everything before `summary.json`.
     pub seconds: f64,
 }
@@ -153,18 +155,20 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         create_dir(&output.dir)?;
     }
     let mut files = OutputFiles::new(&output.dir);
+    // Computed once, for every file that shows them.
     let crystals = crystal_orientations(scene, result);
+    let measures = measure_textures(scene, result, &crystals);
     if output.grains_csv {
         files.write(GRAINS_CSV, |w| write_grains_csv(w, grains, &crystals))?;
     }
     if let Some(vtk) = &output.vtk {
         files.write(GRAINS_VTU, |w| {
-            write_grains_vtu_oriented(w, grains, domain, vtk, Some(&crystals))
+            write_grains_vtu(w, grains, domain, vtk, Some(&crystals))
         })?;
     }
     if output.centers {
         files.write(CENTERS_VTP, |w| {
-            write_centers_vtp_oriented(w, grains, Some(&crystals))
+            write_centers_vtp(w, grains, Some(&crystals))
         })?;
     }
     // Where it helps: a texture was asked for, or orientations go to a solver.
@@ -177,11 +181,17 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
             render_pole_figures_png(w, &scene.phases, grains, &crystals).map_err(io::Error::other)
         })?;
     }
+    let shown = if textured || output.damask || output.abaqus {
+        &measures[..]
+    } else {
+        &[]
+    };
     let rve = write_derived(
         output,
         &scene.phases,
         domain,
         grains,
+        shown,
         &mut files,
         |grid, files| {
             if output.damask {
@@ -200,13 +210,15 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         },
     )?;
     let seconds = started.elapsed().as_secs_f64();
+    let textures = texture_summaries(scene, &measures);
     if output.summary_json {
-        let summary = Summary::new(scene, result, rve.as_ref(), seconds);
+        let summary = Summary::new(scene, result, rve.as_ref(), textures.clone(), seconds);
         files.write(SUMMARY_JSON, |w| write_summary_json(w, &summary))?;
     }
     Ok(Written {
         files: files.into_written(),
         rve,
+        textures,
         seconds,
     })
 }

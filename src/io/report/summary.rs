@@ -2,7 +2,7 @@
 //! those of the packed grains. A serialization of a [`RunResult`] and of what the
 //! writers measured, built once when everything else is written.
 
-use super::texture::{crystal_orientations, texture_summaries, TextureSummary};
+use super::texture::TextureSummary;
 use super::RveSummary;
 use crate::run::{PhaseStatistics, RunResult, TurnStatistics};
 use crate::scene::{Boundary, Scene};
@@ -97,11 +97,13 @@ pub struct CounterSummary {
 
 impl<'a> Summary<'a> {
     /// The summary of `result`, a run of `scene`, whose other outputs took `outputs`
-    /// seconds to write and rendered the RVE as `rve` (when one was written).
+    /// seconds to write and rendered the RVE as `rve` (when one was written), with its
+    /// phases' `textures` ([`texture_summaries`](super::texture_summaries)).
     pub fn new(
         scene: &Scene,
         result: &'a RunResult,
         rve: Option<&'a RveSummary>,
+        textures: Vec<TextureSummary>,
         outputs: f64,
     ) -> Self {
         let packing = &result.packing;
@@ -146,7 +148,7 @@ impl<'a> Summary<'a> {
             rotation: &statistics.rotation,
             phases: &statistics.phases,
             rve,
-            textures: texture_summaries(scene, result, &crystal_orientations(scene, result)),
+            textures,
         }
     }
 }

@@ -38,15 +38,11 @@ pub fn quadratic_form(grain: &PackedGrain) -> [f64; 9] {
 /// Writes `centers.vtp` (VTK XML PolyData, binary base64, float64): one point per
 /// grain at its centre, each a vertex cell, with point data `grain_id`, `phase`,
 /// `semi_axes` (3 components), `shape_tensor` ([`shape_tensor`], 9 components, the
-/// active tensors) and `quadratic_form` ([`quadratic_form`], 9 components).
-pub fn write_centers_vtp(out: &mut dyn Write, grains: &[PackedGrain]) -> io::Result<()> {
-    write_centers_vtp_oriented(out, grains, None)
-}
-
-/// [`write_centers_vtp`], with `crystals[i]`, the crystal orientation of `grains[i]`,
-/// as point data `crystal_quaternion` (4 components, scalar first) and
-/// `euler_angles` (Bunge, degrees) when given.
-pub fn write_centers_vtp_oriented(
+/// active tensors) and `quadratic_form` ([`quadratic_form`], 9 components); with
+/// `crystals` (`crystals[i]` the crystal orientation of `grains[i]`), also
+/// `crystal_quaternion` (4 components, scalar first) and `euler_angles` (Bunge,
+/// degrees).
+pub fn write_centers_vtp(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     crystals: Option<&[[f64; 4]]>,

@@ -26,10 +26,10 @@
 //! };
 //! let domain = Domain { size: [10.0; 3], boundary: Boundary::Periodic };
 //! let mut vtu = Vec::new();
-//! write_grains_vtu(&mut vtu, &[grain], &domain, &VtkSpec::default())?;
+//! write_grains_vtu(&mut vtu, &[grain], &domain, &VtkSpec::default(), None)?;
 //! assert!(String::from_utf8(vtu)?.contains(r#"NumberOfCells="320""#));
 //! let mut vtp = Vec::new();
-//! write_centers_vtp(&mut vtp, &[grain])?;
+//! write_centers_vtp(&mut vtp, &[grain], None)?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -37,9 +37,9 @@ mod centers;
 mod icosphere;
 mod surfaces;
 
-pub use centers::{quadratic_form, shape_tensor, write_centers_vtp, write_centers_vtp_oriented};
+pub use centers::{quadratic_form, shape_tensor, write_centers_vtp};
 pub use icosphere::Icosphere;
-pub use surfaces::{periodic_shifts, write_grains_vtu, write_grains_vtu_oriented};
+pub use surfaces::{periodic_shifts, write_grains_vtu};
 
 use crate::contact::rotation_column;
 use crate::packing::PackedGrain;
@@ -142,7 +142,7 @@ mod tests {
             quaternion: [1.0, 0.0, 0.0, 0.0],
         };
         let mut out = Vec::new();
-        write_centers_vtp(&mut out, &[grain]).unwrap();
+        write_centers_vtp(&mut out, &[grain], None).unwrap();
         let text = String::from_utf8(out).unwrap();
         for name in TOPOLOGY_ARRAYS {
             assert!(text.contains(&format!(r#"<DataArray type="Int64" Name="{name}""#)));

@@ -92,20 +92,10 @@ struct CellData {
 /// triangle: `grain_id` and `phase` (the CSV's), `volume` `4π/3·a1·a2·a3` and
 /// `equivalent_diameter` `2·(a1·a2·a3)^{1/3}` of the exact ellipsoid, `aspect_ratio`
 /// `a1/a2` (both as in the summary, [`crate::run::Statistics`]), and
-/// `periodic_image` (0 for the grain, 1 for a copy).
+/// `periodic_image` (0 for the grain, 1 for a copy); with `crystals` (`crystals[i]`
+/// the crystal orientation of `grains[i]`), also `crystal_quaternion` (4 components,
+/// scalar first) and `euler_angles` (Bunge, degrees).
 pub fn write_grains_vtu(
-    out: &mut dyn Write,
-    grains: &[PackedGrain],
-    domain: &Domain,
-    spec: &VtkSpec,
-) -> io::Result<()> {
-    write_grains_vtu_oriented(out, grains, domain, spec, None)
-}
-
-/// [`write_grains_vtu`], with `crystals[i]`, the crystal orientation of `grains[i]`,
-/// as cell data `crystal_quaternion` (4 components, scalar first) and `euler_angles`
-/// (Bunge, degrees) on each of its triangles when given.
-pub fn write_grains_vtu_oriented(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     domain: &Domain,
