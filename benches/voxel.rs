@@ -56,7 +56,7 @@ fn main() {
             let mut bytes = Vec::new();
             let t_vti = median(|| {
                 bytes.clear();
-                write_vti(&grid, &mut bytes).unwrap();
+                write_vti(&grid, None, &mut bytes).unwrap();
             });
             if let Ok(dir) = std::env::var("VOXEL_BENCH_OUT") {
                 let name = format!("{n}_{fill:?}").to_lowercase();

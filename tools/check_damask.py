@@ -11,6 +11,12 @@ own Python package (damask, pinned in tools/requirements-exports.txt).
   CSV's o0..o3 and DAMASK's own quaternion of the CSV's Bunge Euler angles
   (`damask.Rotation.from_Euler_angles`, degrees) to ORIENTATION_TOL; the matrix, if
   any, is last.
+- `rve.vti` as DAMASK reads it: `damask.VTK.load` sees its cell arrays, and the
+  `material` array equals `GeomGrid.load`'s (x fastest); when the run wrote
+  orientations, the 3-component `euler_angles` array holds each cell's material's Bunge
+  angles: the CSV's phi1, Phi, phi2 for a grain, exactly, 0 for the matrix. Each
+  array's base64 text is alone on the line after its `<DataArray>` tag, the layout
+  DAMASK's Fortran reader (src/grid/VTI.f90, `VTI_readDataset_raw`) takes.
 - `centers.vtp` and `grains.vtu` (PyVista): the point data and cell data
   `crystal_quaternion` and `euler_angles` are the CSV's, exactly.
 - `load.yaml`: `damask.LoadcaseGrid.load` reads it, with one load step.
@@ -31,6 +37,8 @@ from checklist import Checklist
 ORIENTATION_TOL = 1e-12
 # Box size from the grid's spacing × cells, against the summary's (printed to 17 digits).
 SIZE_TOL = 1e-12
+# Characters of base64 text.
+BASE64 = set("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/=")
 
 
 def main():
@@ -85,10 +93,28 @@ def main():
           "grains.vtu crystal_quaternion != grains.csv o0..o3 of each triangle's grain")
     check(np.array_equal(surfaces.cell_data["euler_angles"], csv_e[ids]),
           "grains.vtu euler_angles != grains.csv of each triangle's grain")
+    # rve.vti through DAMASK's own VTK reader.
+    vti = damask.VTK.load(os.path.join(out, "rve.vti"))
+    labels = vti.labels["Cell Data"]
+    check(np.array_equal(vti.get("material").reshape(-1), grid.material.reshape(-1, order="F")),
+          "rve.vti: damask.VTK's material array != GeomGrid.load's")
+    if "euler_angles" in labels:
+        m = vti.get("material").reshape(-1)
+        want = np.vstack([csv_e, np.zeros((len(materials) - len(grains), 3))])[m]
+        check(np.array_equal(vti.get("euler_angles"), want),
+              "rve.vti euler_angles != grains.csv phi1, Phi, phi2 of each cell's material")
+    with open(os.path.join(out, "rve.vti")) as f:
+        lines = f.read().splitlines()
+    for i, line in enumerate(lines):
+        if "<DataArray" in line:
+            data = lines[i + 1].strip()
+            check(line.rstrip().endswith(">") and data and set(data) <= BASE64
+                  and lines[i + 2].strip() == "</DataArray>",
+                  f"rve.vti line {i + 1}: the data is not alone on the line after the tag")
     load = damask.LoadcaseGrid.load(os.path.join(out, "load.yaml"))
     check(len(load["loadstep"]) == 1, "load.yaml has no single load step")
     print(f"material.yaml: {len(materials)} materials, complete and valid; rve.vti {[int(c) for c in grid.cells]} "
-          f"cells; orientations agree with DAMASK's to {worst:.1e}")
+          f"cells, cell arrays {labels}; orientations agree with DAMASK's to {worst:.1e}")
     return check.exit_code()
 
 

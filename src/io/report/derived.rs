@@ -24,6 +24,17 @@ pub const SECTIONS_PNG: &str = "sections.png";
 /// File name of the statistics figure.
 pub const STATISTICS_PNG: &str = "statistics.png";
 
+/// The crystal orientations of a run, for the files that show them.
+#[derive(Debug, Clone, Copy)]
+pub struct Crystals<'a> {
+    /// Each grain's crystal orientation, in grain id order
+    /// ([`crystal_orientations`](crate::io::texture::crystal_orientations)).
+    pub orientations: &'a [[f64; 4]],
+    /// Each phase's texture, measured on them
+    /// ([`measure_textures`](crate::io::texture::measure_textures)).
+    pub measures: &'a [TextureMeasure],
+}
+
 /// The RVE in `summary.json`: its grid, and how well the voxel grains render the
 /// ellipsoids (per grain in `rve_grains.csv`).
 #[derive(Debug, Clone, Serialize)]
@@ -74,14 +85,14 @@ impl RveSummary {
 /// Writes the RVE files and the statistics figure asked for by `output`, calling
 /// `beside_rve` with the voxel grid once `rve.vti` is written (for the files written on
 /// its cells: DAMASK's and Abaqus'); returns the RVE's totals when one was written.
-/// The statistics figure shows the texture of each phase in `textures` (none: no
-/// texture panels).
+/// With `crystals` (when crystal orientations are asked for), `rve.vti` has each
+/// cell's orientation and the statistics figure each phase's texture.
 pub fn write_derived(
     output: &OutputSpec,
     phases: &[Phase],
     domain: &Domain,
     grains: &[PackedGrain],
-    textures: &[TextureMeasure],
+    crystals: Option<Crystals>,
     files: &mut OutputFiles,
     beside_rve: impl FnOnce(&VoxelGrid, &mut OutputFiles) -> Result<(), ReportError>,
 ) -> Result<Option<RveSummary>, ReportError> {
@@ -92,7 +103,9 @@ pub fn write_derived(
         let grid = voxelise(grains, domain, rve.cells, fill, phases.len())
             .map_err(|e| files.error(RVE_VTI, io::Error::other(e)))?;
         let seconds = start.elapsed().as_secs_f64();
-        files.write(RVE_VTI, |w| write_vti(&grid, w))?;
+        files.write(RVE_VTI, |w| {
+            write_vti(&grid, crystals.map(|c| c.orientations), w)
+        })?;
         beside_rve(&grid, files)?;
         let report = grain_report(&grid, grains)
             .map_err(|e| files.error(RVE_GRAINS_CSV, io::Error::other(e)))?;
@@ -108,6 +121,7 @@ pub fn write_derived(
     }
     if output.statistics_png {
         files.write(STATISTICS_PNG, |w| {
+            let textures = crystals.map_or(&[][..], |c| c.measures);
             render_statistics_png(w, phases, grains, samples.as_deref(), textures)
                 .map_err(io::Error::other)
         })?;

@@ -23,7 +23,7 @@ mod summary;
 mod texture;
 
 pub use derived::{
-    write_derived, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
+    write_derived, Crystals, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
 };
 
 pub use crate::io::texture::crystal_orientations;
@@ -181,11 +181,11 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
             render_pole_figures_png(w, &scene.phases, grains, &crystals).map_err(io::Error::other)
         })?;
     }
-    let shown = if textured || output.damask || output.abaqus {
-        &measures[..]
-    } else {
-        &[]
-    };
+    // The same condition for the texture panels and rve.vti's orientations.
+    let shown = (textured || output.damask || output.abaqus).then_some(Crystals {
+        orientations: &crystals,
+        measures: &measures,
+    });
     let rve = write_derived(
         output,
         &scene.phases,

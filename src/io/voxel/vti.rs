@@ -1,4 +1,5 @@
-//! VTK XML ImageData (`.vti`) with the `material` and `phase` cell arrays.
+//! VTK XML ImageData (`.vti`) with the `material` and `phase` cell arrays (and, when
+//! crystal orientations are asked for, `euler_angles`).
 //!
 //! A small writer of its own rather than `vtkio`: vtkio (0.6 and 0.7) stores an image's
 //! Origin and Spacing as `f32`, so `L/N` would be rounded (92/69 becomes 1.3333334 and
@@ -7,6 +8,7 @@
 //! in independent blocks (compressed in parallel) and base64-encoded, as VTK writes them.
 
 use super::VoxelGrid;
+use crate::scene::quaternion_to_euler;
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
 use flate2::write::ZlibEncoder;
@@ -23,7 +25,19 @@ const BLOCK_BYTES: usize = 1 << 20;
 /// origin is 0 and the spacing `L/N`, printed with 17 significant digits so that
 /// `N × spacing` gives `L` back. The cell arrays `material` and `phase` are `Int32`
 /// (DAMASK's `GeomGrid.load` takes the `material` array; `phase` becomes an initial
-/// condition there), in x-fastest order as VTK expects.
+/// condition there), in x-fastest order as VTK expects. With `orientations`
+/// (`orientations[k]` the crystal orientation of grain `k`, a unit quaternion scalar
+/// first), a third array `euler_angles` (`Float64`, 3 components: Bunge φ1, Φ, φ2 in
+/// degrees, as in `grains.csv`, [`quaternion_to_euler`]) gives each cell its material's
+/// orientation, the identity (0, 0, 0) for the matrix (as its `material.yaml` entry).
+/// Three components, not the quaternion's four: DAMASK's `GeomGrid.load` takes every
+/// other cell array as an initial condition and rejects any that is not a scalar or a
+/// 3-vector.
+///
+/// Each array's data is alone on the line after its `<DataArray …>` tag, as DAMASK's
+/// Fortran reader takes it (`VTI_readDataset_raw` in DAMASK's `src/grid/VTI.f90` reads
+/// the line after the tag named `material` as the whole base64 text and skips the
+/// others); XML readers do not mind the line breaks.
 ///
 /// ```
 /// use grainpack::scene::{Boundary, Domain};
@@ -32,11 +46,15 @@ const BLOCK_BYTES: usize = 1 << 20;
 /// let domain = Domain { size: [1.0; 3], boundary: Boundary::Periodic };
 /// let grid = voxelise(&[], &domain, [2, 3, 4], RveFill::Matrix, 1).unwrap();
 /// let mut out = Vec::new();
-/// write_vti(&grid, &mut out).unwrap();
+/// write_vti(&grid, None, &mut out).unwrap();
 /// let text = String::from_utf8(out).unwrap();
 /// assert!(text.contains(r#"WholeExtent="0 2 0 3 0 4""#));
 /// ```
-pub fn write_vti(grid: &VoxelGrid, out: &mut dyn Write) -> io::Result<()> {
+pub fn write_vti(
+    grid: &VoxelGrid,
+    orientations: Option<&[[f64; 4]]>,
+    out: &mut dyn Write,
+) -> io::Result<()> {
     let [nx, ny, nz] = grid.cells;
     let h = grid.spacing();
     let extent = format!("0 {nx} 0 {ny} 0 {nz}");
@@ -57,12 +75,32 @@ pub fn write_vti(grid: &VoxelGrid, out: &mut dyn Write) -> io::Result<()> {
             .par_iter()
             .fold(|| (u32::MAX, 0), |(lo, hi), &v| (lo.min(v), hi.max(v)))
             .reduce(|| (u32::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)));
-        write!(
+        writeln!(
             out,
             r#"        <DataArray type="Int32" Name="{name}" format="binary" RangeMin="{lo}" RangeMax="{hi}">"#
         )?;
-        write_compressed(values, out)?;
-        writeln!(out, "</DataArray>")?;
+        // Values are below i32::MAX (checked when the grid was made), so their Int32
+        // bytes equal their UInt32 bytes.
+        write_compressed(values, 4, |v, bytes| bytes.extend(v.to_le_bytes()), out)?;
+        writeln!(out, "\n        </DataArray>")?;
+    }
+    if let Some(orientations) = orientations {
+        let euler: Vec<[f64; 3]> = orientations
+            .iter()
+            .map(|&q| quaternion_to_euler(q).map(f64::to_degrees))
+            .collect();
+        writeln!(
+            out,
+            r#"        <DataArray type="Float64" Name="euler_angles" NumberOfComponents="3" format="binary">"#
+        )?;
+        let of = |m: &u32| euler.get(*m as usize).copied().unwrap_or([0.0; 3]);
+        write_compressed(
+            &grid.material,
+            24,
+            |m, bytes| bytes.extend(of(m).iter().flat_map(|x| x.to_le_bytes())),
+            out,
+        )?;
+        writeln!(out, "\n        </DataArray>")?;
     }
     writeln!(out, "      </CellData>")?;
     writeln!(out, "    </Piece>")?;
@@ -70,23 +108,32 @@ pub fn write_vti(grid: &VoxelGrid, out: &mut dyn Write) -> io::Result<()> {
     writeln!(out, "</VTKFile>")
 }
 
-/// One array as VTK's compressed binary: base64 of the header `[blocks, block size,
-/// size of a partial last block (0 if full), compressed size of each block]` (UInt64),
-/// then base64 of the compressed blocks one after another.
-fn write_compressed(values: &[u32], out: &mut dyn Write) -> io::Result<()> {
-    // Values are below i32::MAX (checked when the grid was made), so their Int32 bytes
-    // equal their UInt32 bytes.
-    let values_per_block = BLOCK_BYTES / 4;
+/// One array as VTK's compressed binary, on one line: base64 of the header
+/// `[blocks, block size, size of a partial last block (0 if full), compressed size of
+/// each block]` (UInt64), then base64 of the compressed blocks one after another. Each
+/// cell's `width` bytes are made by `bytes` from its value, block by block (so a wide
+/// array is never whole in memory uncompressed).
+fn write_compressed<T: Sync>(
+    values: &[T],
+    width: usize,
+    bytes: impl Fn(&T, &mut Vec<u8>) + Sync,
+    out: &mut dyn Write,
+) -> io::Result<()> {
+    write!(out, "          ")?;
+    let values_per_block = BLOCK_BYTES / width;
     let blocks: Vec<Vec<u8>> = values
         .par_chunks(values_per_block)
         .map(|chunk| {
-            let bytes: Vec<u8> = chunk.iter().flat_map(|v| v.to_le_bytes()).collect();
+            let mut raw = Vec::with_capacity(chunk.len() * width);
+            for v in chunk {
+                bytes(v, &mut raw);
+            }
             let mut z = ZlibEncoder::new(Vec::new(), Compression::fast());
-            z.write_all(&bytes)?;
+            z.write_all(&raw)?;
             z.finish()
         })
         .collect::<io::Result<_>>()?;
-    let total = values.len() * 4;
+    let total = values.len() * width;
     let mut header = vec![
         blocks.len() as u64,
         BLOCK_BYTES as u64,
