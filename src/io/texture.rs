@@ -89,7 +89,7 @@ impl AngleLaw {
     }
 
     /// Mean and standard deviation (radians): exact sums for atoms, else from the CDF
-    /// by Simpson's rule on [`MOMENT_STEPS`] steps.
+    /// by Simpson's rule on 4096 steps.
     pub fn moments(&self) -> Moments {
         match self {
             Self::Zero => Moments {
