@@ -251,9 +251,13 @@ fn the_scene_homogenization_goes_to_material_yaml_and_bad_ones_are_named() {
     let err = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(0), "{err}");
     let material = std::fs::read_to_string(dir.join("out/material.yaml")).unwrap();
-    // The entry as given, N_constituents added; every material refers to it.
+    // The entry as given, N_constituents added; every material refers to it. In flow
+    // style with a blank after each `:` and `,`, which DAMASK's own YAML parser needs
+    // (DAMASK_grid 3.0.2 stops with error 705 on compact JSON).
     assert!(
-        material.contains("homogenization:\n  \"direct\": {\"N_constituents\":1,\"mechanical\":{\"type\":\"pass\"}}"),
+        material.contains(
+            "homogenization:\n  \"direct\": {\"N_constituents\": 1, \"mechanical\": {\"type\": \"pass\"}}"
+        ),
         "{material}"
     );
     assert_eq!(material.matches("- homogenization: \"direct\"").count(), 12);

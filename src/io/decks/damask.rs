@@ -44,10 +44,10 @@ pub fn write_material_yaml(
         .homogenization
         .clone()
         .unwrap_or_else(Homogenization::single_crystal);
-    let entry = serde_json::to_string(&homogenization.entry).map_err(io::Error::other)?;
+    let entry = flow(&homogenization.entry)?;
     let h = json(&homogenization.name);
     writeln!(out, "homogenization:")?;
-    // JSON is YAML (1.2): the scene's table goes through as written.
+    // The scene's table goes through as written, in flow style ([`flow`]).
     writeln!(out, "  {h}: {entry}")?;
     writeln!(out, "phase:")?;
     let mut names: Vec<&str> = scene.phases.iter().map(|p| p.name.as_str()).collect();
@@ -100,8 +100,8 @@ fn write_phase(
     elastic: Option<Elastic>,
 ) -> io::Result<()> {
     if let Some(table) = damask {
-        // JSON is YAML (1.2): the table goes through as written.
-        let text = serde_json::to_string(table).map_err(io::Error::other)?;
+        // The table goes through as written, in flow style ([`flow`]).
+        let text = flow(table)?;
         return writeln!(out, "  {}: {text}", json(name));
     }
     let (e, note) = match elastic {
@@ -123,6 +123,45 @@ fn write_phase(
         out,
         "      elastic: {{type: Hooke, C_11: {c11:?}, C_12: {c12:?}, C_44: {c44:?}}}"
     )
+}
+
+/// `value` as a one-line YAML flow collection: JSON (which YAML 1.2 reads) with a blank
+/// after every `:` and `,`. DAMASK's own YAML parser (used when DAMASK is built without
+/// libfyaml, e.g. `YAML.f90` in v3.0.2) reads `"key": value` only with that blank and
+/// stops with "error 705, unsupported feature" on compact JSON `{"key":value}`.
+fn flow<T: serde::Serialize>(value: &T) -> io::Result<String> {
+    fn write(v: &serde_json::Value, out: &mut String) {
+        use serde_json::Value;
+        match v {
+            Value::Object(map) => {
+                out.push('{');
+                for (k, (key, v)) in map.iter().enumerate() {
+                    if k > 0 {
+                        out.push_str(", ");
+                    }
+                    out.push_str(&json(key));
+                    out.push_str(": ");
+                    write(v, out);
+                }
+                out.push('}');
+            }
+            Value::Array(items) => {
+                out.push('[');
+                for (k, v) in items.iter().enumerate() {
+                    if k > 0 {
+                        out.push_str(", ");
+                    }
+                    write(v, out);
+                }
+                out.push(']');
+            }
+            scalar => out.push_str(&scalar.to_string()),
+        }
+    }
+    let value = serde_json::to_value(value).map_err(io::Error::other)?;
+    let mut out = String::new();
+    write(&value, &mut out);
+    Ok(out)
 }
 
 /// A string as a JSON (so YAML) scalar, quoted and escaped.
@@ -156,4 +195,19 @@ pub fn write_load_yaml(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> 
     writeln!(out, "        P: [[x, x, x], [x, 0, x], [x, x, 0]]")?;
     writeln!(out, "    discretization: {{t: 10, N: 20}}")?;
     writeln!(out, "    f_out: 4")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tables_go_out_in_flow_style_with_blanks_after_colons_and_commas() {
+        let table: toml::Table =
+            toml::from_str("a = 1\nb = { c = [1.5, 2], d = \"x: y\" }\n").unwrap();
+        assert_eq!(
+            flow(&table).unwrap(),
+            r#"{"a": 1, "b": {"c": [1.5, 2], "d": "x: y"}}"#
+        );
+    }
 }
