@@ -46,6 +46,12 @@ pub fn contact_geometry_fast(
     geometry_from(contact_function_fast(r12, q1, q2)?, r12, q1, q2)
 }
 
+/// Smallest `|s|` whose square is formed without underflow (`2^-500`, far above the
+/// subnormals); below it, or if it overflows, the normal is taken from `s` scaled to
+/// its largest entry (above it the two differ only by rounding, and the plain one is
+/// kept so that results stay bitwise those of earlier versions).
+const NORM_IN_RANGE: f64 = 3.054936363499605e-151;
+
 #[inline]
 fn geometry_from(
     c: Contact,
@@ -78,12 +84,15 @@ fn geometry_from(
             (sym_mul(q1, &s).map(|x| m * x), s)
         }
     };
-    // Scaled to its largest entry first: s itself may be far out of |s|²'s range
-    // (sizes far apart).
-    let big = s[0].abs().max(s[1].abs()).max(s[2].abs());
-    let unit = s.map(|x| x / big);
-    let norm = dot(&unit, &unit).sqrt();
-    let normal = unit.map(|x| x / norm);
+    let mut norm = dot(&s, &s).sqrt();
+    let mut normal = s.map(|x| x / norm);
+    if !(norm.is_finite() && norm >= NORM_IN_RANGE) {
+        // s beyond the range of |s|² (sizes far apart): scaled to its largest entry.
+        let big = s[0].abs().max(s[1].abs()).max(s[2].abs());
+        let unit = s.map(|x| x / big);
+        norm = dot(&unit, &unit).sqrt();
+        normal = unit.map(|x| x / norm);
+    }
     // d (1 − 1/μ) r̂·n̂, with d r̂ = r12.
     let gap = (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal);
     if !(gap.is_finite() && norm.is_finite() && norm > 0.0) || point.iter().any(|x| !x.is_finite())
