@@ -197,15 +197,23 @@ fn bad_input_is_a_typed_error_never_a_panic_or_nan() {
         assert!(overlaps(&r, &q, &bad).is_err());
     }
     // Semi-definite forms (a flat disc, a point) are answered by the contact functions
-    // (their accuracy: src/contact/perram_wertheim/robust_tests.rs and the references);
-    // the yes/no tests need definite forms.
+    // (their accuracy: src/contact/perram_wertheim/robust_tests.rs and the references)
+    // and decided by `overlaps` as the contact function decides them.
     for flat in [[1.0, 0.0, 0.0, 1.0, 0.0, 0.0], [0.0; 6]] {
         for method in [contact_function, contact_function_fast] {
             let c = method(&r, &flat, &q).unwrap();
             assert!(c.mu2.is_finite() && c.mu2 > 0.0, "{c:?}");
         }
-        assert!(overlaps(&r, &q, &flat).is_err());
+        for scale in [0.1, 1.0, 10.0] {
+            let r = r.map(|x| x * scale);
+            let mu2 = contact_function(&r, &q, &flat).unwrap().mu2;
+            assert_eq!(overlaps(&r, &q, &flat), Ok(mu2 < 1.0), "μ² = {mu2}");
+        }
     }
+    // Two discs in one plane: μ² is not defined, and `overlaps` says so.
+    let disc = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0];
+    let both = overlaps(&[0.5, 0.5, 0.0], &disc, &disc);
+    assert_eq!(both, Err(ContactError::CommonNullDirection), "{both:?}");
     // Too far apart for a double: overflow is an error, not infinity.
     let far = contact_function(
         &[1e200, 0.0, 0.0],

@@ -5,8 +5,8 @@
 
 use grainpack::contact::{
     contact_function, contact_function_fast, contact_functions, contact_functions_fast,
-    fast_condition, overlaps, overlaps_prepared, wang, Ellipsoid, PreparedEllipsoid, Stop,
-    FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL, GAIN_TOL,
+    contact_geometry, fast_condition, overlaps, overlaps_prepared, wang, ContactError, Ellipsoid,
+    PreparedEllipsoid, Stop, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL, GAIN_TOL,
 };
 use grainpack::io::cases::{Case, CaseTable};
 use std::collections::BTreeMap;
@@ -188,6 +188,109 @@ fn overlaps_agrees_with_the_reference_sign_away_from_tangency() {
             );
         }
     }
+}
+
+/// `overlaps` on the degenerate set: semi-definite forms (where μ² is defined) and
+/// sizes up to 1e150 apart are decided, as the reference decides them away from
+/// tangency (it misjudged 16 `huge_ratio` pairs and refused the semi-definite ones
+/// before). [`PreparedEllipsoid`] takes only definite forms, so `overlaps_prepared` is
+/// checked on the rows whose forms it takes.
+#[test]
+fn overlaps_decides_the_degenerate_set() {
+    let mut wrong = vec![];
+    let mut prepared = 0;
+    for row in load("contact_degenerate.csv") {
+        if (row.mu2 - 1.0).abs() <= 1e-12 {
+            continue;
+        }
+        let c = &row.case;
+        let answer = overlaps(&c.r12, &c.q1, &c.q2);
+        if answer != Ok(row.mu2 < 1.0) {
+            wrong.push(format!(
+                "line {} ({}): {answer:?}, mu2 = {}",
+                c.line, row.category, row.mu2
+            ));
+        }
+        let prepare = |q| PreparedEllipsoid::new(&Ellipsoid::from_quadratic_form(q).ok()?).ok();
+        if let (Some(p1), Some(p2)) = (prepare(c.q1), prepare(c.q2)) {
+            prepared += 1;
+            let answer = overlaps_prepared(&c.r12, &p1, &p2);
+            if answer != Ok(row.mu2 < 1.0) {
+                wrong.push(format!(
+                    "prepared, line {}: {answer:?}, mu2 = {}",
+                    c.line, row.mu2
+                ));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} wrong:\n{}",
+        wrong.len(),
+        wrong.join("\n")
+    );
+    assert!(prepared > 100, "{prepared}");
+}
+
+/// `contact_geometry` on the degenerate set: semi-definite forms give μ² as the
+/// contact function does, a unit normal and a gap of the sign of `μ − 1`; where the
+/// second form is definite by a margin, the point lies on it scaled by μ and the normal
+/// is its outward one there. Sizes far apart (`huge_ratio`) are answered the same way
+/// or, where λ* rounds to 0 or 1 and the form at that end is definite (the point needs
+/// `1 − λ`, which λ no longer carries), refused with a typed error saying so.
+#[test]
+fn contact_geometry_takes_the_degenerate_set() {
+    let mut refused = vec![];
+    for row in load("contact_degenerate.csv") {
+        let c = &row.case;
+        let g = match contact_geometry(&c.r12, &c.q1, &c.q2) {
+            Ok(g) => g,
+            Err(e) => {
+                let end = matches!(e, ContactError::Overflow { what } if what.contains("rounding of 0 or 1"));
+                if !(end && row.category == "huge_ratio") {
+                    refused.push(format!("line {} ({}): {e}", c.line, row.category));
+                }
+                continue;
+            }
+        };
+        assert_eq!(g.mu2, accurate(c), "line {}", c.line);
+        let n = g.normal;
+        let norm = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!(
+            (norm - 1.0).abs() <= 4.0 * f64::EPSILON,
+            "line {}: {n:?}",
+            c.line
+        );
+        assert_eq!(g.gap > 0.0, g.mu2 > 1.0, "line {}: {}", c.line, g.gap);
+        let q2 = nalgebra::Matrix3::new(
+            c.q2[0], c.q2[1], c.q2[2], c.q2[1], c.q2[3], c.q2[4], c.q2[2], c.q2[4], c.q2[5],
+        );
+        // Definite by a margin (discs may factor by rounding), of moderate size.
+        let eig = q2.symmetric_eigenvalues();
+        if row.category != "semi_definite" || eig.min() <= 1e-6 * eig.max() {
+            continue;
+        }
+        let chol = q2.cholesky().unwrap();
+        // On the surface of the second ellipsoid scaled by μ, normal outward there.
+        let x2 = nalgebra::Vector3::from(g.point) - nalgebra::Vector3::from(c.r12);
+        let v = chol.solve(&x2);
+        let h2 = x2.dot(&v);
+        assert!(
+            (h2 - g.mu2).abs() <= 1e-8 * g.mu2,
+            "line {}: {h2} {}",
+            c.line,
+            g.mu2
+        );
+        let dir = -v.normalize();
+        let along = dir.dot(&nalgebra::Vector3::from(n));
+        assert!(along > 1.0 - 1e-8, "line {}: {along}", c.line);
+    }
+    assert!(
+        refused.is_empty(),
+        "{}:\n{}",
+        refused.len(),
+        refused.join("\n")
+    );
 }
 
 /// Wang–Wang–Kim is fragile near tangency; away from it (|μ²−1| > 1e-3) on the

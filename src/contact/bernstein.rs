@@ -17,7 +17,7 @@
 //! of [`Rational::halley`] in range.
 
 use super::scale::{exponent, ldexp, pow2};
-use super::sym::{frobenius, quadratic_form, Arith, PencilParts};
+use super::sym::{frobenius, larger, quadratic_form, Arith, PencilParts};
 use super::{Sym3, Vec3};
 
 /// Smallest `P = t s a b` (scaled coefficients) at which [`Rational::halley`] multiplies
@@ -245,10 +245,11 @@ pub(crate) fn coefficients<T: Arith>(
     (a, b)
 }
 
-/// The largest of a set of coefficients, in the order [`Rational::new`] compares them.
+/// The largest of a set of coefficients, in the order [`Rational::new`] compares them
+/// (finite: they come from factored forms).
 #[inline(always)]
 pub(crate) fn largest(c: &[f64]) -> f64 {
-    c[1..].iter().fold(c[0], |m, &x| m.max(x))
+    c[1..].iter().fold(c[0], |m, &x| larger(m, x))
 }
 
 /// `e` such that `2^-e` brings the largest coefficient `max` of a set into `[1, 2)`,

@@ -2,7 +2,10 @@
 //! they are.
 
 use super::direct::factor_at;
-use super::sym::{dot, sym_mul};
+use super::ldl::Ldl;
+use super::perram_wertheim::rank;
+use super::scale::{exponent, pow2};
+use super::sym::{adjugate, dot, frobenius, polarised_adjugate, sym_mul};
 use super::{contact_function, contact_function_fast, Contact, ContactError, Sym3, Vec3};
 
 /// Contact geometry of a pair, for collision response.
@@ -43,6 +46,12 @@ pub fn contact_geometry_fast(
     geometry_from(contact_function_fast(r12, q1, q2)?, r12, q1, q2)
 }
 
+/// Smallest `|s|` whose square is formed without underflow (`2^-500`, far above the
+/// subnormals); below it, or if it overflows, the normal is taken from `s` scaled to
+/// its largest entry (above it the two differ only by rounding, and the plain one is
+/// kept so that results stay bitwise those of earlier versions).
+const NORM_IN_RANGE: f64 = 3.054936363499605e-151;
+
 #[inline]
 fn geometry_from(
     c: Contact,
@@ -55,19 +64,46 @@ fn geometry_from(
         return Err(ContactError::CoincidentCentres);
     }
     let (lambda, m) = (c.lambda, 1.0 - c.lambda);
-    let (_, ldl) = factor_at(lambda, q1, q2)?;
-    let s = ldl.solve(r12);
-    let q1s = sym_mul(q1, &s);
-    let point = q1s.map(|x| m * x);
-    let norm = dot(&s, &s).sqrt();
-    let normal = s.map(|x| x / norm);
+    // μ² the limit of f at an end where that end's form is singular (a point, a needle,
+    // or a disc the other ellipsoid reaches inside its rim): the limits there. λ is
+    // then exactly 0 or 1 (or within rounding of it), and Q(λ) that form.
+    let limit = match lambda {
+        0.0 => limit_at_start(r12, q1, q2).map(|v| {
+            let q2v = sym_mul(q2, &v);
+            (std::array::from_fn(|i| r12[i] - q2v[i]), v)
+        }),
+        1.0 => limit_at_start(&r12.map(|x| -x), q2, q1)
+            .map(|v| (sym_mul(q1, &v).map(|x| -x), v.map(|x| -x))),
+        _ => None,
+    };
+    let (point, s) = match limit {
+        Some(found) => found,
+        None => {
+            let (_, ldl) = factor_at(lambda, q1, q2)?;
+            let s = ldl.solve(r12);
+            (sym_mul(q1, &s).map(|x| m * x), s)
+        }
+    };
+    let mut norm = dot(&s, &s).sqrt();
+    let mut normal = s.map(|x| x / norm);
+    if !(norm.is_finite() && norm >= NORM_IN_RANGE) {
+        // s beyond the range of |s|² (sizes far apart): scaled to its largest entry.
+        let big = s[0].abs().max(s[1].abs()).max(s[2].abs());
+        let unit = s.map(|x| x / big);
+        norm = dot(&unit, &unit).sqrt();
+        normal = unit.map(|x| x / norm);
+    }
     // d (1 − 1/μ) r̂·n̂, with d r̂ = r12.
     let gap = (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal);
     if !(gap.is_finite() && norm.is_finite() && norm > 0.0) || point.iter().any(|x| !x.is_finite())
     {
-        return Err(ContactError::Overflow {
-            what: "the contact geometry",
-        });
+        // λ* within rounding of an end with a definite form there (sizes ~1e16 or more
+        // apart): (1 − λ) Q1 Q(λ)⁻¹ r12 needs 1 − λ, which λ no longer carries.
+        let what = match lambda {
+            0.0 | 1.0 => "the contact point (λ* is within rounding of 0 or 1: sizes too far apart)",
+            _ => "the contact geometry",
+        };
+        return Err(ContactError::Overflow { what });
     }
     Ok(ContactGeometry {
         mu2: c.mu2,
@@ -76,4 +112,39 @@ fn geometry_from(
         normal,
         gap,
     })
+}
+
+/// `v = lim λ Q(λ)⁻¹ r12` as `λ → 0⁺` for a singular `q1`, whose direction is the
+/// normal's and with which the point is `r12 − Q2 v` (from `c1`; pw85's
+/// `x₀ = c2 − λ Q2 Q(λ)⁻¹ r12`). With `adj Q(λ) = s² adj Q1 + st M + t² adj Q2` and
+/// `det Q(λ) = s³B0 + s²t B1 + st² B2 + t³B3` (`t = λ`, `s = 1 − λ`), the terms of
+/// lowest order that do not vanish with the rank of `q1` give `adj Q1 r12 / B1` (a
+/// disc, rank 2), `M r12 / B2` (a needle, rank 1) and `Q2⁻¹ r12` (a point). `None` if
+/// `q1` is definite (rank 3: `Q(0)` factors), not semi-definite, or the limit is not
+/// finite.
+fn limit_at_start(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Option<Vec3> {
+    let top = q1[0].max(q1[3]).max(q1[5]);
+    let rank = if top > 0.0 {
+        // `rank` takes forms scaled to a largest diagonal entry in [1, 2).
+        let unit = pow2(-exponent(top));
+        rank(&q1.map(|x| x * unit))?
+    } else if q1.iter().all(|&x| x == 0.0) {
+        0
+    } else {
+        return None;
+    };
+    let v = match rank {
+        2 => {
+            let adj1 = adjugate(q1);
+            let b1 = frobenius(&adj1, q2);
+            sym_mul(&adj1, r12).map(|x| x / b1)
+        }
+        1 => {
+            let b2 = frobenius(q1, &adjugate(q2));
+            sym_mul(&polarised_adjugate(q1, q2), r12).map(|x| x / b2)
+        }
+        0 => Ldl::factor(q2).ok()?.solve(r12),
+        _ => return None,
+    };
+    v.iter().all(|x| x.is_finite()).then_some(v)
 }

@@ -6,7 +6,7 @@
 
 #[cfg(test)]
 use super::sym::sym_mul;
-use super::sym::Arith;
+use super::sym::{larger, Arith};
 use super::Sym3;
 
 /// Smallest accepted pivot relative to the largest diagonal entry of `Q`:
@@ -53,10 +53,11 @@ impl Ldl {
     }
 }
 
-/// The pivot below which [`Ldl::factor`] rejects `q`.
+/// The pivot below which [`Ldl::factor`] rejects `q`. A NaN on the diagonal makes a
+/// pivot NaN, which is rejected whatever the floor, so [`larger`] will do.
 #[inline(always)]
 pub(crate) fn pivot_floor(q: &Sym3) -> f64 {
-    MIN_RELATIVE_PIVOT * q[0].max(q[3]).max(q[5])
+    MIN_RELATIVE_PIVOT * larger(larger(q[0], q[3]), q[5])
 }
 
 impl<T: Arith> Ldl<T> {

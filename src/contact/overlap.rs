@@ -48,8 +48,29 @@ pub fn overlaps(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<bool, ContactError> 
         }
     }
     // Rescaled, or invalid input (the typed error comes from here).
-    let p = Prepared::new(r12, q1, q2)?;
-    overlaps_factored(&p.r, &p.q1, &p.q2, &p.l1, &p.l2, (r12, q1, q2))
+    match Prepared::new(r12, q1, q2) {
+        // r12 and the forms rescaled alike: μ² unchanged, and compared with 1.
+        Ok(p) if p.mu2_exp == 0 => {
+            overlaps_factored(&p.r, &p.q1, &p.q2, &p.l1, &p.l2, (r12, q1, q2))
+        }
+        // Rescaled apart (entries beyond 2^±200), μ² scaled by 2^mu2_exp: the proofs
+        // here compare with 1 and misjudged such pairs; the contact function decides.
+        Ok(_) => by_contact_function(r12, q1, q2),
+        // Semi-definite forms and sizes too far apart to rescale together: the contact
+        // function's robust path (its typed error where μ² is not defined).
+        Err(ContactError::NotPositiveDefinite { .. } | ContactError::Overflow { .. }) => {
+            by_contact_function(r12, q1, q2)
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The decision from [`contact_function`]'s μ² (a few ulps): for the pairs whose
+/// arithmetic the proofs here cannot trust.
+#[cold]
+#[inline(never)]
+fn by_contact_function(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<bool, ContactError> {
+    Ok(contact_function(r12, q1, q2)?.mu2 < 1.0)
 }
 
 /// [`overlaps`] for a pair that needs no rescaling, factored: the bounding spheres

@@ -5,6 +5,7 @@
 //! underflows, and the result is scaled back.
 
 use super::ldl::Ldl;
+use super::sym::larger;
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
 
 /// Inputs whose largest |r| and all diagonal entries of Q lie within
@@ -147,11 +148,21 @@ pub(crate) fn finish(
 
 /// Whether every diagonal entry of `q1`, `q2` and the largest `|r12_i|` (unless all are
 /// 0) lie within `[2^-SAFE_EXP, 2^SAFE_EXP]`, so that the pair needs no rescaling.
-/// False for NaN or infinite `r12` or diagonal entries (every comparison with NaN
-/// fails); off-diagonal entries are the factorisation's business.
+/// False for NaN or infinite `r12` and infinite diagonal entries. The diagonal is
+/// tested by its extremes (one `minsd` or `maxsd` per entry, where testing each entry
+/// twice took twice the instructions), which may skip a NaN entry: a NaN on the
+/// diagonal makes a pivot NaN, so [`Ldl::factor`], which every caller runs next,
+/// rejects the form and the caller takes its validating path. Off-diagonal entries are
+/// the factorisation's business too.
 #[inline(always)]
 pub(crate) fn needs_no_rescaling(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> bool {
-    diagonal_in_safe_range(q1) & diagonal_in_safe_range(q2) & offset_in_safe_range(r12)
+    let d = [q1[0], q1[3], q1[5], q2[0], q2[3], q2[5]];
+    let (mut min, mut max) = (d[0], d[0]);
+    for &x in &d[1..] {
+        min = if x < min { x } else { min };
+        max = larger(max, x);
+    }
+    (min >= pow2(-SAFE_EXP)) & (max <= pow2(SAFE_EXP)) & offset_in_safe_range(r12)
 }
 
 /// The part of [`needs_no_rescaling`] about one quadratic form.

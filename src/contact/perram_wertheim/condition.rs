@@ -55,7 +55,7 @@ pub const FAST_TOL: f64 = 262_144.0 * f64::EPSILON;
 pub const FAST_MAX_CONDITION: f64 = FAST_TOL / (2.0 * FAST_ROUNDING * f64::EPSILON);
 
 use crate::contact::scale::Prepared;
-use crate::contact::sym::{Arith, PencilParts};
+use crate::contact::sym::{larger, Arith, PencilParts};
 use crate::contact::{ContactError, Sym3, Vec3};
 
 /// The seven coefficients' sizes that [`κ`](self) compares, as five pairs
@@ -94,21 +94,23 @@ pub(crate) fn sizes<T: Arith>(
 }
 
 /// Whether `κ ≤ FAST_MAX_CONDITION`, from [`sizes`], and every coefficient positive:
-/// the largest `X̃_k − FAST_MAX_CONDITION · X_k` at most 0 and the smallest `X_k` above
-/// 0, without a division or a branch per coefficient (five comparisons folded with `&`
-/// compiled to code that cost the fast path 25 ns per call). [`contact_functions_fast`]'s
-/// lanes take the same differences, maxima and minima (both skip a NaN as `f64::max`
-/// and `f64::min` do).
+/// the largest `X̃_k − FAST_MAX_CONDITION · X_k` at most 0. On the common path every
+/// `X̃_k` is positive (sums of products of at most three diagonal entries, each at
+/// least `2^-300` once [`Prepared`] has scaled the pair, and of `r_i² ≠ 0`), so a coefficient `X_k ≤ 0` makes its difference positive: the maximum
+/// tests both, without a division or a branch per coefficient (five comparisons
+/// folded with `&` compiled to code that cost the fast path 25 ns per call). The
+/// maximum is taken by [`larger`], one `maxsd` each, which skips a NaN difference as
+/// [`contact_functions_fast`]'s lanes do (they take the same differences and maximum).
 ///
 /// [`contact_functions_fast`]: super::contact_functions_fast
 #[inline(always)]
 pub(crate) fn well_conditioned(sizes: &[(f64, f64); 5]) -> bool {
-    let (mut worst, mut smallest) = (f64::NEG_INFINITY, f64::INFINITY);
+    let mut worst = f64::NEG_INFINITY;
     for &(bound, x) in sizes {
-        worst = worst.max(bound - FAST_MAX_CONDITION * x);
-        smallest = smallest.min(x);
+        let excess = bound - FAST_MAX_CONDITION * x;
+        worst = larger(worst, excess);
     }
-    (worst <= 0.0) & (smallest > 0.0)
+    worst <= 0.0
 }
 
 /// The condition number `κ` (module docs) that decides whether

@@ -162,7 +162,7 @@ pub(super) fn coefficients(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4
 /// diagonal pivoting above [`SINGULAR_PIVOT`]. `None` if `q` is indefinite: a pivot
 /// below `−SINGULAR_PIVOT`, or, once the remaining diagonal is negligible, an entry
 /// beside it that is not.
-pub(super) fn rank(q: &Sym3) -> Option<usize> {
+pub(crate) fn rank(q: &Sym3) -> Option<usize> {
     let mut m = [[q[0], q[1], q[2]], [q[1], q[3], q[4]], [q[2], q[4], q[5]]];
     let tol = SINGULAR_PIVOT * q[0].max(q[3]).max(q[5]).max(1.0);
     // An entry beside the diagonal is at most the geometric mean of its diagonal

@@ -344,6 +344,7 @@ pub use condition::{fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL}
 use condition::{sizes, well_conditioned};
 pub use corrector::CUBIC_TERM_TOL;
 use corrector::{correct, correct_checking, correct_further, finished};
+pub(crate) use exact::rank;
 pub use exact::SINGULAR_PIVOT;
 use robust::solve_robust;
 pub use robust::NEAR_END;

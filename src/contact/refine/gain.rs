@@ -56,7 +56,11 @@ impl<T: Arith> Terms<'_, T> {
         // A² · β num.
         let a2 = (self.p * self.p * bound * h * uw).times(4.0);
         let xs = self.x[0].abs() + self.x[1].abs() + self.x[2].abs();
-        let s_m_s = xs * xs * self.q12_abs * self.i2;
+        // Σ_ij |(Q2−Q1)_ij|, here only: the checks run on few pairs.
+        let q = self.q12;
+        let q12_abs = (q[0].abs() + q[3].abs() + q[5].abs())
+            + (q[1].abs() + q[2].abs() + q[4].abs()).times(2.0);
+        let s_m_s = xs * xs * q12_abs * self.i2;
         let b = (self.p * s_m_s).times(SU_ROUNDING * f64::EPSILON)
             + (a * h).abs().times(G_ROUNDING * f64::EPSILON);
         let e = a2 + b * b * scale;

@@ -15,9 +15,13 @@ pub(crate) fn at_lanes(
     let k = Terms::new(pair, lambda);
     let (bound, negligible) = k.second_order_bound();
     let plain = k.plain();
-    let [(e, second), (e_g2, first)] = k.plain_g_checks(&plain, bound);
-    let unchecked = check_g.not();
-    let (g_ok, trusted) = (unchecked.or(e.le(second)), unchecked.or(e_g2.le(first)));
+    // The checks only where a lane needs them (none on typical pairs).
+    let (mut g_ok, mut trusted) = (Mask::splat(true), Mask::splat(true));
+    if check_g.any() {
+        let [(e, second), (e_g2, first)] = k.plain_g_checks(&plain, bound);
+        let unchecked = check_g.not();
+        (g_ok, trusted) = (unchecked.or(e.le(second)), unchecked.or(e_g2.le(first)));
+    }
     let negligible = bound.le(negligible);
     let (e0, second) = k.second_order();
     let accepted = second.abs().le(REFINEMENT_TOL * k.num.hi);

@@ -89,9 +89,6 @@ pub(crate) struct Start<T = f64> {
     /// `1 / det_unit`, exact (a power of two).
     inv_unit: T,
     q12: [T; 6],
-    /// `Σ_ij |(Q2−Q1)_ij|`, for the bound on the rounding of `sᵀ(Q2−Q1)s` (module
-    /// [`gain`]).
-    q12_abs: T,
 }
 
 impl<T: Arith> Start<T> {
@@ -118,8 +115,6 @@ impl<T: Arith> Start<T> {
             ],
             inv_unit,
             q12,
-            q12_abs: (q12[0].abs() + q12[3].abs() + q12[5].abs())
-                + (q12[1].abs() + q12[2].abs() + q12[4].abs()).times(2.0),
         }
     }
 }

@@ -17,7 +17,6 @@ pub(crate) struct RefinedPair<'a, T> {
 /// The terms of [`Refiner::at`] at one λ, up to its test of the second-order term.
 pub(crate) struct Terms<'a, T> {
     pub(super) q12: &'a [T; 6],
-    pub(super) q12_abs: T,
     pub(super) t: T,
     pub(super) p: T,
     pub(super) beta: T,
@@ -71,7 +70,6 @@ impl<'a, T: Arith> Terms<'a, T> {
         num.lo = num.lo + (beta * rx.lo + dot(&x, &rho));
         Self {
             q12,
-            q12_abs: start.q12_abs,
             t,
             p,
             beta,

@@ -179,16 +179,15 @@ fn eight<const ACCURATE: bool>(
     })
 }
 
-/// [`well_conditioned`], lane by lane: the same differences, maxima and minima.
+/// [`well_conditioned`], lane by lane: the same differences and maximum.
 #[inline(always)]
 fn well_conditioned_lanes(sizes: &[(F, F); 5]) -> Mask {
-    let (mut worst, mut smallest) = (F::splat(f64::NEG_INFINITY), F::splat(f64::INFINITY));
+    let mut worst = F::splat(f64::NEG_INFINITY);
     for &(bound, x) in sizes {
         let excess = bound - FAST_MAX_CONDITION * x;
         worst = excess.gt(worst).select(excess, worst);
-        smallest = x.lt(smallest).select(x, smallest);
     }
-    worst.le(F::splat(0.0)).and(smallest.gt(F::splat(0.0)))
+    worst.le(F::splat(0.0))
 }
 
 /// [`Rational::new`]'s scaling of a set of coefficients, lane by lane: the exponents
