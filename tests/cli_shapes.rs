@@ -87,6 +87,11 @@ fn rolled_pancakes_pack_without_overlaps_and_meet_their_laws() {
     // The derived ratio c/b has moments but no law.
     assert!(p["shape"]["c_over_b"]["ks_distance"].is_null());
     assert!(p["shape"]["c_over_b"]["achieved"]["mean"].as_f64().unwrap() < 1.0);
+    // statistics.png: c/a and the spin on a second line of panels.
+    assert_eq!(
+        png_size(&dir.join("out/statistics.png")),
+        (1800, 60 + 2 * 470)
+    );
 }
 
 #[test]
@@ -103,6 +108,58 @@ fn fuller_aggregate_packs_dense_and_overlap_free() {
     // most ~0.03 on top of the sampling bound.
     let n = summary["grains"].as_u64().unwrap() as usize;
     assert!(ks < ks_bound(n) + 0.03, "{ks}");
+
+    // The sieve curve on its own terms: the volume passing each sieve, recomputed from
+    // grains.csv (diameters and volumes from the semi-axes), is what the summary says,
+    // to the rounding of a sum of ~1000 volumes (1e-12).
+    let table = &summary["phases"][0]["size_table"];
+    assert_eq!(table["by"], "volume");
+    let grains = read_grains(&dir.join("out/grains.csv"));
+    let total: f64 = grains.iter().map(|g| g.volume()).sum();
+    let diameter = |g: &support::packed::Grain| 2.0 * g.semi_axes.iter().product::<f64>().cbrt();
+    let numbers = |key: &str| -> Vec<f64> {
+        table[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let (sizes, target, achieved) = (numbers("sizes"), numbers("target"), numbers("achieved"));
+    assert_eq!(sizes, [4.0, 5.6, 8.0, 11.2, 16.0]);
+    let mut deviation: f64 = 0.0;
+    for ((&d, &t), &a) in sizes.iter().zip(&target).zip(&achieved) {
+        let passing: f64 = grains
+            .iter()
+            .filter(|g| diameter(g) <= d)
+            .map(|g| g.volume())
+            .sum::<f64>()
+            / total;
+        assert!((passing - a).abs() < 1e-12, "at {d}: {passing} vs {a}");
+        deviation = deviation.max((a - t).abs());
+    }
+    assert_eq!(table["max_deviation"].as_f64().unwrap(), deviation);
+    // Weighted by volume, the sample counts as n_eff = (Σv)²/Σv² grains (Kish's
+    // effective size; the big grains dominate), and the jam's 1.5 % shrink adds ~0.03.
+    let n_eff = total * total / grains.iter().map(|g| g.volume().powi(2)).sum::<f64>();
+    let ks = table["ks_distance"].as_f64().unwrap();
+    assert!(
+        ks >= deviation && ks < ks_bound(n_eff as usize) + 0.03,
+        "{ks} (n_eff {n_eff})"
+    );
+    // statistics.png has the grading panel on a second line of panels.
+    assert_eq!(
+        png_size(&dir.join("out/statistics.png")),
+        (1800, 60 + 2 * 470)
+    );
+}
+
+/// Width and height of a PNG, from its IHDR chunk.
+fn png_size(path: &Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
 }
 
 /// Triaxial grains with c/b, a uniform spin, between walls.

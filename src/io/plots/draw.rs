@@ -1,5 +1,7 @@
 //! Drawing the statistics figure with plotters, into an RGB buffer.
 
+use super::cdf::draw_cdf_panel;
+use super::extra::Extra;
 use super::histogram::{aligned_bins, freedman_diaconis_bins, Histogram};
 use super::panel::{Panel, Row};
 use super::target::Target;
@@ -92,39 +94,59 @@ pub(super) fn figure(
             ((size.0 / 2) as i32, (TITLE_HEIGHT / 2) as i32),
         )
         .map_err(failed("the title"))?;
-    for (row, area) in rows.iter().zip(body.split_evenly((rows.len(), 1))) {
-        let (heading, panels) = area.split_vertically(HEADING_HEIGHT);
-        heading
-            .draw(&PathElement::new(
-                vec![(16, 0), ((COLUMNS * PANEL_WIDTH) as i32 - 16, 0)],
-                BLACK.mix(0.25).stroke_width(1),
-            ))
-            .map_err(failed(&row.title))?;
-        heading
-            .draw_text(
-                &row.title,
-                &(FONT, 20)
-                    .into_font()
-                    .color(&BLACK)
-                    .pos(Pos::new(HPos::Left, VPos::Center)),
-                (24, (HEADING_HEIGHT / 2) as i32),
-            )
-            .map_err(failed(&row.title))?;
-        for (panel, area) in row
-            .panels
-            .iter()
-            .zip(panels.split_evenly((1, COLUMNS as usize)))
-        {
-            draw_panel(&area, panel).map_err(|e| match e {
-                PlotError::Draw { what, message } => PlotError::Draw {
-                    what: format!("{what} of {}", row.title),
-                    message,
-                },
-                other => other,
-            })?;
+    let lines: usize = rows.iter().map(Row::lines).sum();
+    let mut areas = body.split_evenly((lines, 1)).into_iter();
+    for row in rows {
+        let in_row = |e: PlotError| match e {
+            PlotError::Draw { what, message } => PlotError::Draw {
+                what: format!("{what} of {}", row.title),
+                message,
+            },
+            other => other,
+        };
+        let Some(area) = areas.next() else { break };
+        for (panel, area) in row.panels.iter().zip(line(&area, &row.title)?) {
+            draw_panel(&area, panel).map_err(in_row)?;
+        }
+        for chunk in row.extra.chunks(COLUMNS as usize) {
+            let Some(area) = areas.next() else { break };
+            let heading = format!("{} (continued)", row.title.split(':').next().unwrap_or(""));
+            for (panel, area) in chunk.iter().zip(line(&area, &heading)?) {
+                match panel {
+                    Extra::Density(p) => draw_panel(&area, p),
+                    Extra::Cdf(p) => draw_cdf_panel(&area, p),
+                }
+                .map_err(in_row)?;
+            }
         }
     }
     root.present().map_err(failed("the figure"))
+}
+
+/// Draws a line's heading (a rule and `title`) and returns the areas of its
+/// [`COLUMNS`] panels.
+fn line<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+) -> Result<Vec<DrawingArea<DB, Shift>>, PlotError> {
+    let (heading, panels) = area.split_vertically(HEADING_HEIGHT);
+    heading
+        .draw(&PathElement::new(
+            vec![(16, 0), ((COLUMNS * PANEL_WIDTH) as i32 - 16, 0)],
+            BLACK.mix(0.25).stroke_width(1),
+        ))
+        .map_err(failed(title))?;
+    heading
+        .draw_text(
+            title,
+            &(FONT, 20)
+                .into_font()
+                .color(&BLACK)
+                .pos(Pos::new(HPos::Left, VPos::Center)),
+            (24, (HEADING_HEIGHT / 2) as i32),
+        )
+        .map_err(failed(title))?;
+    Ok(panels.split_evenly((1, COLUMNS as usize)))
 }
 
 /// The x interval the histograms cover: the law's range and every finite value.
@@ -153,7 +175,7 @@ const Y_TICKS: usize = 6;
 /// labels. plotters spaces ticks by a step `{1, 2, 5} × 10ᵐ` giving at most `ticks`
 /// of them; the smallest such step above `span/ticks` is at most that step, so its
 /// decimals are enough for every label.
-fn tick_decimals(span: f64, ticks: usize) -> usize {
+pub(super) fn tick_decimals(span: f64, ticks: usize) -> usize {
     let raw = span / ticks as f64;
     if !(raw > 0.0 && raw.is_finite()) {
         return 0;
@@ -180,15 +202,36 @@ fn sample_label(name: &str, values: &[f64], unit: &str, decimals: usize) -> Stri
     }
 }
 
+/// The packed grains' legend entry, with the KS distance to the law when known.
+fn packed_label(panel: &Panel, unit: &str, decimals: usize) -> String {
+    let label = sample_label("packed grains", &panel.packed, unit, decimals);
+    match panel.ks_distance {
+        Some(d) => format!("{label}, KS {d:.3}"),
+        None => label,
+    }
+}
+
 /// The legend entry of the target law, with `decimals` decimals.
 fn law_label(panel: &Panel, unit: &str, decimals: usize) -> String {
     match (&panel.target, panel.law_moments) {
         (Target::Value(v), _) => format!("{}: {v:.decimals$}{unit}", panel.law),
         (Target::Curve(_), Some(m)) => format!(
             "{}: {:.decimals$}{unit} \u{b1} {:.decimals$}{unit}",
-            panel.law, m.mean, m.std
+            panel.law,
+            no_negative_zero(m.mean, decimals),
+            m.std
         ),
         (Target::Curve(_), None) => panel.law.clone(),
+    }
+}
+
+/// `x`, or 0 if it prints as zero with `decimals` decimals: a mean of 0 computed by
+/// quadrature (`-1e-17`) would print as `-0.0`.
+fn no_negative_zero(x: f64, decimals: usize) -> f64 {
+    if x.abs() < 0.5 * 10f64.powi(-(decimals as i32)) {
+        0.0
+    } else {
+        x
     }
 }
 
@@ -281,7 +324,7 @@ fn draw_panel<DB: DrawingBackend>(
                 .map(|(a, b, d)| Rectangle::new([(a, 0.0), (b, d)], fill)),
         )
         .map_err(failed(what))?
-        .label(sample_label("packed grains", &panel.packed, unit, figures))
+        .label(packed_label(panel, unit, figures))
         .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 20, y + 6)], fill));
     chart
         .draw_series(std::iter::once(PathElement::new(

@@ -30,7 +30,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod cdf;
 mod draw;
+mod extra;
 mod histogram;
 mod panel;
 mod poles;
@@ -42,6 +44,7 @@ pub use poles::{equal_area, render_pole_figures_png};
 
 use crate::io::atomic::write_atomically;
 use crate::packing::PackedGrain;
+use crate::run::PhaseStatistics;
 use crate::scene::Phase;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -79,6 +82,9 @@ pub struct VoxelSample {
     ///
     /// [`tilt_angle`]: crate::scene::tilt_angle
     pub tilt: Option<f64>,
+    /// The moment ellipsoid's semi-axis ratios sorted `a ≥ b ≥ c`: `[b/a, c/a, c/b]`,
+    /// compared with a triaxial phase's shape-ratio laws; `None` when not measured.
+    pub shape_ratios: Option<[f64; 3]>,
 }
 
 /// Why the statistics figure could not be made.
@@ -141,13 +147,14 @@ pub enum PlotError {
     },
 }
 
-/// The size in pixels `(width, height)` of the figure for `phases` phases:
+/// The size in pixels `(width, height)` of the figure with `lines` lines of panels:
 /// [`COLUMNS`] panels of [`PANEL_WIDTH`] across, a [`TITLE_HEIGHT`] strip and one
-/// [`ROW_HEIGHT`] row per phase down.
-pub fn statistics_png_size(phases: usize) -> (u64, u64) {
+/// [`ROW_HEIGHT`] line down per phase, plus one per [`COLUMNS`] extra panels of a
+/// phase (its third shape ratio, spin, or tabulated size CDF).
+pub fn statistics_png_size(lines: usize) -> (u64, u64) {
     (
         u64::from(COLUMNS * PANEL_WIDTH),
-        u64::from(TITLE_HEIGHT) + phases as u64 * u64::from(ROW_HEIGHT),
+        u64::from(TITLE_HEIGHT) + lines as u64 * u64::from(ROW_HEIGHT),
     )
 }
 
@@ -179,11 +186,23 @@ pub fn render_statistics_png(
     packed: &[PackedGrain],
     voxel: Option<&[VoxelSample]>,
 ) -> Result<(), PlotError> {
+    render_run_statistics_png(out, phases, packed, voxel, None)
+}
+
+/// [`render_statistics_png`] for a run: the legends also give the KS distances of the
+/// run's statistics (`summary.json`'s, in `statistics`, one per phase).
+pub fn render_run_statistics_png(
+    out: &mut dyn Write,
+    phases: &[Phase],
+    packed: &[PackedGrain],
+    voxel: Option<&[VoxelSample]>,
+    statistics: Option<&[PhaseStatistics]>,
+) -> Result<(), PlotError> {
     if phases.is_empty() {
         return Err(PlotError::NoPhases);
     }
-    let rows = panel::rows(phases, packed, voxel)?;
-    let (width, height) = statistics_png_size(phases.len());
+    let rows = panel::rows(phases, packed, voxel, statistics)?;
+    let (width, height) = statistics_png_size(rows.iter().map(panel::Row::lines).sum());
     let height = u32::try_from(height)
         .ok()
         .filter(|&h| h <= MAX_HEIGHT)

@@ -8,6 +8,7 @@ use super::{PlotError, VoxelSample};
 use crate::contact::{ellipsoid_volume, equivalent_diameter, rotation_column};
 use crate::laws::{Moments, VonMisesCdf};
 use crate::packing::PackedGrain;
+use crate::run::PhaseStatistics;
 use crate::scene::{aspect_ratio, tilt_angle, Orientation, Phase};
 use std::f64::consts::PI;
 
@@ -51,6 +52,8 @@ pub(super) struct Panel {
     pub packed: Vec<f64>,
     /// The voxel grains' values, when voxel samples were given.
     pub voxel: Option<Vec<f64>>,
+    /// KS distance of the packed values to the law, as `summary.json` reports it.
+    pub ks_distance: Option<f64>,
 }
 
 /// One row of the figure: a phase.
@@ -60,6 +63,15 @@ pub(super) struct Row {
     pub title: String,
     /// Equivalent diameter, aspect ratio, angle.
     pub panels: [Panel; 3],
+    /// Panels for the phase's other laws, on lines of [`COLUMNS`](super::COLUMNS) below.
+    pub extra: Vec<super::extra::Extra>,
+}
+
+impl Row {
+    /// Lines of panels the row takes: its three, then its extra panels.
+    pub fn lines(&self) -> usize {
+        1 + self.extra.len().div_ceil(super::COLUMNS as usize)
+    }
 }
 
 /// The rows of the figure, one per phase, after checking that every grain and voxel
@@ -68,6 +80,7 @@ pub(super) fn rows(
     phases: &[Phase],
     packed: &[PackedGrain],
     voxel: Option<&[VoxelSample]>,
+    statistics: Option<&[PhaseStatistics]>,
 ) -> Result<Vec<Row>, PlotError> {
     if let Some(g) = packed.iter().find(|g| g.phase >= phases.len()) {
         return Err(PlotError::GrainPhase {
@@ -131,6 +144,7 @@ pub(super) fn rows(
                     .map(|g| equivalent_diameter(g.semi_axes))
                     .collect(),
                 voxel: voxel_values(|s| Some(s.equivalent_diameter)),
+                ks_distance: None,
             };
             let aspect = Panel {
                 title: "aspect ratio".into(),
@@ -141,6 +155,7 @@ pub(super) fn rows(
                 target: distribution_target(&phase.aspect_ratio),
                 packed: grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect(),
                 voxel: voxel_values(|s| Some(s.aspect_ratio)),
+                ks_distance: None,
             };
             // Triaxial phases: b/a (a2/a1) against its law in place of a1/a2; the
             // summary has c/a and c/b too.
@@ -157,14 +172,20 @@ pub(super) fn rows(
                         .iter()
                         .map(|g| g.semi_axes[1] / g.semi_axes[0])
                         .collect(),
-                    voxel: None,
+                    voxel: voxel_values(|s| s.shape_ratios.map(|r| r[0])),
+                    ks_distance: None,
                 },
             };
             let mut angle = angle_panel(&phase.orientation, &grains);
             angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
+            let stats = statistics.and_then(|s| s.get(index));
+            let mut panels = [diameter, aspect, angle];
+            super::extra::set_measured(&mut panels, phase);
+            super::extra::set_ks(&mut panels, phase, stats);
             Row {
                 title,
-                panels: [diameter, aspect, angle],
+                panels,
+                extra: super::extra::panels(phase, &grains, samples.as_deref(), stats),
             }
         })
         .collect())
@@ -193,6 +214,7 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
         target,
         packed: polar.clone(),
         voxel: None,
+        ks_distance: None,
     };
     match *orientation {
         Orientation::Tilt { axis, angle } => {
@@ -216,6 +238,7 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
                     .map(|g| tilt_angle(g.quaternion, axis, &angle).to_degrees())
                     .collect(),
                 voxel: None,
+                ks_distance: None,
             }
         }
         Orientation::Fisher(law) => {
@@ -241,6 +264,7 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
                     })
                     .collect(),
                 voxel: None,
+                ks_distance: None,
             }
         }
         Orientation::Random => {

@@ -4,11 +4,12 @@
 
 use super::{OutputFiles, ReportError};
 use crate::contact::{dot, rotation_column, sphere_diameter};
-use crate::io::plots::{render_statistics_png, VoxelSample};
+use crate::io::plots::{render_run_statistics_png, VoxelSample};
 use crate::io::voxel::{
     grain_report, voxelise, write_sections_png, write_vti, VoxelGrid, VoxelReport,
 };
 use crate::packing::PackedGrain;
+use crate::run::PhaseStatistics;
 use crate::scene::{tilt_angle_of, Domain, Orientation, OutputSpec, Phase, RveFill};
 use serde::Serialize;
 use std::io;
@@ -73,9 +74,11 @@ impl RveSummary {
 /// Writes the RVE files and the statistics figure asked for by `output`, calling
 /// `beside_rve` with the voxel grid once `rve.vti` is written (for the files written on
 /// its cells: DAMASK's and Abaqus'); returns the RVE's totals when one was written.
+/// `statistics` (the run's, one per phase) gives the figure's KS distances.
 pub fn write_derived(
     output: &OutputSpec,
     phases: &[Phase],
+    statistics: Option<&[PhaseStatistics]>,
     domain: &Domain,
     grains: &[PackedGrain],
     files: &mut OutputFiles,
@@ -104,7 +107,8 @@ pub fn write_derived(
     }
     if output.statistics_png {
         files.write(STATISTICS_PNG, |w| {
-            render_statistics_png(w, phases, grains, samples.as_deref()).map_err(io::Error::other)
+            render_run_statistics_png(w, phases, grains, samples.as_deref(), statistics)
+                .map_err(io::Error::other)
         })?;
     }
     Ok(summary)
@@ -140,7 +144,9 @@ fn write_rve_grains(out: &mut dyn io::Write, report: &VoxelReport) -> io::Result
 
 /// The voxel grains measured like the packed ones: the equivalent diameter of the
 /// voxel volume, and the aspect ratio `a1/a2` and angle from the voxel grain's
-/// moment ellipsoid, whose axis closest to the packed grain's first axis plays `a1`.
+/// moment ellipsoid, whose axis closest to the packed grain's first axis plays `a1`
+/// (`a2` the geometric mean of the other two, the equatorial radius of a spheroid);
+/// the triaxial ratios `b/a`, `c/a`, `c/b` from its sorted semi-axes.
 fn voxel_samples(
     report: &VoxelReport,
     grains: &[PackedGrain],
@@ -177,6 +183,8 @@ fn voxel_samples(
                     axis: tilt_axis,
                     angle,
                 } => Some(tilt_angle_of(axis, *tilt_axis, angle)),
+                // The panel's angle: to the law's mean direction, in [0, π].
+                Orientation::Fisher(law) => Some(law.axis_angle(axis)),
                 _ => Some(axis[2].abs().min(1.0).acos()),
             };
             Some(VoxelSample {
@@ -185,6 +193,7 @@ fn voxel_samples(
                 equivalent_diameter: sphere_diameter(v.voxel_volume),
                 aspect_ratio: a1 / a2,
                 tilt,
+                shape_ratios: Some([shape.b_over_a, shape.c_over_a, shape.c_over_b]),
             })
         })
         .collect()
