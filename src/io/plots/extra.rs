@@ -274,7 +274,10 @@ mod tests {
         };
         assert_eq!(cb.title, "shape ratio c/b");
         // a3/a2 of grains drawn with c/b in [0.4, 0.9], to rounding.
-        assert!(cb.packed.iter().all(|&r| (0.4 - 1e-12..=0.9 + 1e-12).contains(&r)));
+        assert!(cb
+            .packed
+            .iter()
+            .all(|&r| (0.4 - 1e-12..=0.9 + 1e-12).contains(&r)));
         // The uniform spin's density is 1/360 per degree over 360°: area 1 up to the
         // drops to 0 at the ends, which add none.
         let Target::Curve(points) = &spin.target else {
