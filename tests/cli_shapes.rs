@@ -310,3 +310,113 @@ fn bad_measured_tables_name_line_and_column_and_write_nothing() {
         assert_eq!(files_in(&dir), ["s.toml", "t.csv"]);
     }
 }
+
+/// The named columns of a CSV file, as written (strings, so equal means bit for bit).
+fn csv_columns(path: &Path, names: &[&str]) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let at: Vec<usize> = names
+        .iter()
+        .map(|n| header.iter().position(|h| h == n).unwrap())
+        .collect();
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            at.iter().map(|&i| f[i].to_string()).collect()
+        })
+        .collect()
+}
+
+#[test]
+fn measured_table_keeps_the_crystal_orientations_of_a_packed_grains_csv() {
+    let dir = support::files::scratch("shapes", "crystals");
+    let run = pack_in(
+        &dir,
+        &[
+            &repo("configs/measured_grains.toml"),
+            "--out",
+            "first",
+            "--quiet",
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0));
+    let crystal = ["o0", "o1", "o2", "o3"];
+    let first = csv_columns(&dir.join("first/grains.csv"), &crystal);
+    // Exactly the same grains again: each keeps its crystal orientation, bit for bit.
+    std::fs::write(
+        dir.join("exact.toml"),
+        "seed = 2\ntarget_fraction = 0.4\n[box]\nsize = [1.0, 1.0, 1.0]\n[[phase]]\n\
+         measured = { file = \"first/grains.csv\", mode = \"exact\" }\n",
+    )
+    .unwrap();
+    let run = pack_in(&dir, &["exact.toml", "--out", "exact", "--quiet"]);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(csv_columns(&dir.join("exact/grains.csv"), &crystal), first);
+    // Drawn with replacement: every grain carries its row's shape and crystal together.
+    std::fs::write(
+        dir.join("draw.toml"),
+        "seed = 5\ngrains = 120\n[box]\nsize = [50.0, 50.0, 50.0]\n[[phase]]\n\
+         measured = { file = \"first/grains.csv\" }\n",
+    )
+    .unwrap();
+    let run = pack_in(&dir, &["draw.toml", "--out", "draw", "--quiet"]);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let both = ["a1", "a2", "a3", "o0", "o1", "o2", "o3"];
+    let rows = csv_columns(&dir.join("first/grains.csv"), &both);
+    let drawn = csv_columns(&dir.join("draw/grains.csv"), &both);
+    assert_eq!(drawn.len(), 120);
+    for g in &drawn {
+        assert!(rows.contains(g), "{g:?} is no row of the table");
+    }
+    // A table of Bunge Euler angles (degrees) reads back to the same angles, to the
+    // rounding of a quaternion round trip (1e-9 degrees).
+    std::fs::write(
+        dir.join("euler.csv"),
+        "d,phi1,Phi,phi2\n4.0,10.0,20.0,30.0\n5.0,200.0,95.0,300.0\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("euler.toml"),
+        "seed = 1\ngrains = 2\n[box]\nsize = [40.0, 40.0, 40.0]\n[[phase]]\n\
+         measured = { file = \"euler.csv\", mode = \"exact\" }\n",
+    )
+    .unwrap();
+    let run = pack_in(&dir, &["euler.toml", "--out", "euler", "--quiet"]);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let angles = csv_columns(&dir.join("euler/grains.csv"), &["phi1", "Phi", "phi2"]);
+    let want = [[10.0, 20.0, 30.0], [200.0, 95.0, 300.0]];
+    for (got, want) in angles.iter().zip(want) {
+        for (g, w) in got.iter().zip(want) {
+            let g: f64 = g.parse().unwrap();
+            assert!((g - w).abs() < 1e-9, "{got:?} vs {want:?}");
+        }
+    }
+    // A texture on a phase whose table gives the crystals is refused.
+    std::fs::write(
+        dir.join("both.toml"),
+        "seed = 1\ngrains = 2\n[box]\nsize = [40.0, 40.0, 40.0]\n[[phase]]\n\
+         measured = { file = \"euler.csv\", mode = \"exact\" }\n\
+         texture = { kind = \"random\" }\n",
+    )
+    .unwrap();
+    let run = pack_in(&dir, &["both.toml", "--out", "both"]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("phase[0].texture"), "{err}");
+}

@@ -202,6 +202,9 @@ impl Phase {
         };
         spec.quaternion = q;
         spec.tilt = tilt;
+        if let Some(c) = g.crystal {
+            spec.crystal = c;
+        }
         if let Orientation::Tilt { axis, .. } = self.orientation {
             spec.turn_axis = Some(axis.unit());
         }
@@ -265,7 +268,13 @@ impl Scene {
     /// the grains a seed gives.
     pub fn sample_crystals<R: Rng + ?Sized>(&self, grains: &mut [GrainSpec], rng: &mut R) {
         for g in grains {
-            g.crystal = self.phases[g.phase].texture.texture.sample(rng);
+            // Drawn even where a measured table gives the crystal (kept, set by
+            // `measured_grain`), so that the other grains' draws do not depend on it.
+            let drawn = self.phases[g.phase].texture.texture.sample(rng);
+            let measured = self.phases[g.phase].measured.as_ref();
+            if !measured.is_some_and(|m| m.has_crystals()) {
+                g.crystal = drawn;
+            }
         }
     }
 

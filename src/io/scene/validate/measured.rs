@@ -3,15 +3,18 @@
 //! The table has a header row. Columns, in the box's length unit: `d` (equivalent
 //! diameter) or `a1`, `a2`, `a3` (semi-axes); optionally `qw`, `qx`, `qy`, `qz` (unit
 //! quaternion, semi-axis k along column k of its rotation) and `phase` (an index or a
-//! name, selected by the `phase` key). Other columns (`id`, `x`, `y`, `z`, ...) are
-//! ignored, so a `grains.csv` written by `pack` reads back as it is.
+//! name, selected by the `phase` key); optionally the crystal orientation, `o0..o3`
+//! (unit quaternion, scalar first) or else `phi1`, `Phi`, `phi2` (Bunge Euler angles,
+//! degrees). Other columns (`id`, `x`, `y`, `z`, ...) are ignored, so a `grains.csv`
+//! written by `pack` reads back as it is, crystal orientations included.
 
 use crate::contact::QUATERNION_NORM_TOL;
 use crate::io::scene::error::{DataFileError, SceneError, Source};
 use crate::io::scene::raw::{RawMeasured, RawScene};
 use crate::laws::{Distribution, EmpiricalLaw};
 use crate::scene::{
-    Domain, GrainCount, Measured, MeasuredGrain, MeasuredMode, Phase, MAX_TARGET_FRACTION,
+    euler_to_quaternion, Domain, GrainCount, Measured, MeasuredGrain, MeasuredMode, Phase,
+    MAX_TARGET_FRACTION,
 };
 use std::path::Path;
 use toml::Spanned;
@@ -236,6 +239,13 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
         (false, true) => return Err(bad_header("qw, qx, qy and qz go together")),
         (false, false) => None,
     };
+    // Crystal orientations: o0..o3 (a unit quaternion, as pack writes them), else
+    // phi1, Phi, phi2 (Bunge Euler angles in degrees).
+    let crystal_quat = columns(&header, &["o0", "o1", "o2", "o3"]).map_err(|e| bad_header(&e))?;
+    let euler = match crystal_quat {
+        Some(_) => None,
+        None => columns(&header, &["phi1", "Phi", "phi2"]).map_err(|e| bad_header(&e))?,
+    };
     let phase_col = find("phase");
     if select.is_some() && phase_col.is_none() {
         return Err(bad_header(
@@ -311,7 +321,34 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
                 }
             }
         };
-        grains.push(match axes {
+        let unit = |q: [f64; 4], name: &str| -> Result<[f64; 4], Bad> {
+            let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if !((norm - 1.0).abs() <= QUATERNION_NORM_TOL) {
+                return Err((
+                    line,
+                    name.into(),
+                    format!("[{}, {}, {}, {}]", q[0], q[1], q[2], q[3]),
+                    format!("must be a unit quaternion (norm {norm}, tolerance {QUATERNION_NORM_TOL:e})"),
+                ));
+            }
+            // Within rounding of unit norm, kept as written (an exact round trip).
+            Ok(if (norm - 1.0).abs() <= UNIT_ROUNDING {
+                q
+            } else {
+                q.map(|v| v / norm)
+            })
+        };
+        let crystal = match (crystal_quat, euler) {
+            (Some(c), _) => Some(unit(
+                [number(c[0])?, number(c[1])?, number(c[2])?, number(c[3])?],
+                "o0",
+            )?),
+            (None, Some(c)) => Some(euler_to_quaternion(
+                [number(c[0])?, number(c[1])?, number(c[2])?].map(f64::to_radians),
+            )),
+            (None, None) => None,
+        };
+        let mut grain = match axes {
             Some(cols) => MeasuredGrain::with_semi_axes(
                 [positive(cols[0])?, positive(cols[1])?, positive(cols[2])?],
                 q,
@@ -320,10 +357,29 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
                 diameter: positive(d.expect("d or semi-axes"))?,
                 semi_axes: None,
                 quaternion: q,
+                crystal: None,
             },
-        });
+        };
+        grain.crystal = crystal;
+        grains.push(grain);
     }
     Ok(grains)
+}
+
+/// The positions of the columns `names` in `header`: all of them, or `None` if none
+/// is there; an error if only some are.
+fn columns<const N: usize>(
+    header: &[String],
+    names: &[&str; N],
+) -> Result<Option<[usize; N]>, String> {
+    let found = names.map(|n| header.iter().position(|h| h == n));
+    if found.iter().all(Option::is_some) {
+        Ok(Some(found.map(|c| c.expect("all found"))))
+    } else if found.iter().any(Option::is_some) {
+        Err(format!("{} go together", names.join(", ")))
+    } else {
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

@@ -165,6 +165,11 @@ fn phase(
                 m.has_orientations(),
                 p.orientation.as_ref().map(Spanned::span),
             ),
+            (
+                "texture",
+                m.has_crystals(),
+                p.texture.as_ref().map(Spanned::span),
+            ),
         ];
         for (name, from_table, span) in given {
             if let (true, Some(span)) = (from_table, span) {
