@@ -420,3 +420,62 @@ fn measured_table_keeps_the_crystal_orientations_of_a_packed_grains_csv() {
     assert_eq!(run.status.code(), Some(2), "{err}");
     assert!(err.contains("phase[0].texture"), "{err}");
 }
+
+#[test]
+fn exact_and_drawn_phases_mix_by_volume_share() {
+    let dir = support::files::scratch("shapes", "mixed");
+    std::fs::copy(repo("configs/measured_grains.csv"), dir.join("t.csv")).unwrap();
+    // The exact table is share 1 of 3: the drawn phase adds twice its volume.
+    let scene = "seed = 4\ntarget_fraction = 0.35\n[box]\nsize = [1.0, 1.0, 1.0]\n\
+                 [[phase]]\nname = \"table\"\nmeasured = { file = \"t.csv\", mode = \"exact\" }\n\
+                 [[phase]]\nname = \"drawn\"\nshare = 2.0\n\
+                 size = { distribution = \"uniform\", min = 4.0, max = 6.0 }\n";
+    std::fs::write(dir.join("mixed.toml"), scene).unwrap();
+    let summary = pack_and_check(&dir, "mixed.toml", true, 0);
+    let table = read_grains(&dir.join("t.csv"));
+    let packed = read_grains(&dir.join("out/grains.csv"));
+    // Exactly the table's 200 grains, in order, then the drawn ones.
+    let exact: Vec<_> = packed.iter().filter(|g| g.phase == 0).collect();
+    assert_eq!(exact.len(), table.len());
+    for (t, p) in table.iter().zip(&exact) {
+        assert_eq!(t.semi_axes, p.semi_axes);
+    }
+    // Volumes 1 : 2 within one drawn grain (at most (π/6)·6³ = 113 of ~2·8000).
+    let volume = |phase: usize| -> f64 {
+        packed
+            .iter()
+            .filter(|g| g.phase == phase)
+            .map(|g| g.volume())
+            .sum()
+    };
+    let (v0, v1) = (volume(0), volume(1));
+    let grain_max = std::f64::consts::PI / 6.0 * 216.0;
+    assert!((v1 - 2.0 * v0).abs() <= grain_max, "{v0} {v1}");
+    // The box holds them at the target, within half a drawn grain's volume.
+    let size: Vec<f64> = summary["box"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let box_volume: f64 = size.iter().product();
+    assert!(((v0 + v1) / box_volume - 0.35).abs() <= 0.5 * grain_max / box_volume);
+    assert!(
+        (size[0] - size[1]).abs() < 1e-9 * size[0],
+        "a cube stays a cube"
+    );
+    // A grain count cannot be honoured by a mixed scene: a named error.
+    std::fs::write(
+        dir.join("count.toml"),
+        scene.replace("target_fraction = 0.35", "grains = 400"),
+    )
+    .unwrap();
+    let run = pack_in(&dir, &["count.toml", "--out", "count"]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("count.toml") && err.contains("grains"),
+        "{err}"
+    );
+    assert!(!dir.join("count").exists());
+}

@@ -225,21 +225,14 @@ impl Phase {
 }
 
 impl Scene {
-    /// The grains of a scene whose phases all take exactly their measured grains
-    /// (validation makes it all or none): each phase's rows in table order, phase after
-    /// phase. `None` for other scenes.
-    fn exact_grains<R: Rng + ?Sized>(
-        &self,
-        rng: &mut R,
-    ) -> Result<Option<Vec<GrainSpec>>, SampleError> {
-        use super::MeasuredMode;
-        let exact = |p: &Phase| matches!(&p.measured, Some(m) if m.mode == MeasuredMode::Exact);
-        if self.phases.is_empty() || !self.phases.iter().all(exact) {
-            return Ok(None);
-        }
+    /// The grains of the phases that take exactly their measured grains: each such
+    /// phase's rows in table order, phase after phase (empty for a scene without).
+    fn exact_grains<R: Rng + ?Sized>(&self, rng: &mut R) -> Result<Vec<GrainSpec>, SampleError> {
         let mut grains = Vec::new();
         for (index, phase) in self.phases.iter().enumerate() {
-            let m = phase.measured.as_ref().expect("checked above");
+            let Some(m) = phase.measured.as_ref().filter(|_| is_exact(phase)) else {
+                continue;
+            };
             for g in m.grains.iter() {
                 let spec = phase.measured_grain(index, g, rng).ok_or_else(|| {
                     SampleError::TooManyRejections {
@@ -252,7 +245,7 @@ impl Scene {
                 grains.push(spec);
             }
         }
-        Ok(Some(grains))
+        Ok(grains)
     }
 
     /// The scene's random generator: ChaCha8 seeded with [`Scene::seed`], whose stream
@@ -297,8 +290,11 @@ impl Scene {
         &self,
         rng: &mut R,
     ) -> Result<Vec<GrainSpec>, SampleError> {
-        if let Some(grains) = self.exact_grains(rng)? {
-            return Ok(grains);
+        // Exact tables first: all of their grains, once each. A scene of exact tables
+        // only ends there; a mixed one draws its other phases up to their shares.
+        let exact = self.exact_grains(rng)?;
+        if self.phases.iter().all(is_exact) {
+            return Ok(exact);
         }
         let done = |count: usize, volume: f64| match self.count {
             GrainCount::Exactly(n) => count >= n,
@@ -310,14 +306,20 @@ impl Scene {
         let mut grains =
             Vec::with_capacity(self.expected_count().ceil().min(MAX_GRAINS as f64) as usize);
         let mut drawn = vec![0.0; self.phases.len()];
-        let mut total = 0.0;
+        for g in &exact {
+            drawn[g.phase] += g.volume();
+        }
+        let mut total: f64 = drawn.iter().sum();
+        let first_drawn = exact.len();
+        grains.extend(exact);
+        let p0 = self.phases.iter().position(|p| !is_exact(p)).unwrap_or(0);
         while !done(grains.len(), total) {
             if grains.len() >= limit {
                 return Err(SampleError::TooManyGrains { limit });
             }
-            let mut p = 0;
+            let mut p = p0;
             for (i, phase) in self.phases.iter().enumerate() {
-                if drawn[i] / phase.share < drawn[p] / self.phases[p].share {
+                if !is_exact(phase) && drawn[i] / phase.share < drawn[p] / self.phases[p].share {
                     p = i;
                 }
             }
@@ -327,10 +329,17 @@ impl Scene {
             grains.push(grain);
         }
         if let GrainCount::Fraction(f) = self.count {
-            grains.truncate(nearest_count(&grains, f * self.domain.volume()));
+            // Only a drawn grain may be dropped, never one of an exact table.
+            let keep = nearest_count(&grains, f * self.domain.volume());
+            grains.truncate(keep.max(first_drawn + 1).min(grains.len()));
         }
         Ok(grains)
     }
+}
+
+/// Whether `phase` takes exactly its measured grains (`mode = "exact"`).
+fn is_exact(phase: &Phase) -> bool {
+    matches!(&phase.measured, Some(m) if m.mode == super::MeasuredMode::Exact)
 }
 
 /// Of the grains drawn until their volumes first reached `target`, how many to keep so

@@ -115,21 +115,6 @@ pub(super) fn exact_scene(
     for (p, v) in phases.iter_mut().zip(&volumes) {
         p.share = v / volume;
     }
-    let fits = |domain: &Domain, at: std::ops::Range<usize>, key: &str| {
-        let longest = phases.iter().map(Phase::max_length).fold(0.0, f64::max);
-        if longest >= domain.min_side() {
-            return Err(src.invalid(
-                key,
-                at,
-                format!(
-                    "the longest measured grain ({longest} end to end) does not fit in the                      box, whose shortest side is {}",
-                    domain.min_side()
-                ),
-            ));
-        }
-        Ok(())
-    };
-    let fraction_of = |domain: &Domain| volume / domain.volume();
     match (&raw.grains, &raw.target_fraction) {
         (Some(n), _) if *n.get_ref() != count as u64 => Err(src.invalid_at(
             "grains",
@@ -141,7 +126,41 @@ pub(super) fn exact_scene(
             f,
             "give either grains or target_fraction, not both",
         )),
-        (_, Some(f)) => {
+        _ => Ok((
+            GrainCount::Exactly(count),
+            sized_box(src, raw, domain, phases, volume)?,
+        )),
+    }
+}
+
+/// The box of a scene whose grain volume is fixed (`volume`, by its exact tables):
+/// with `target_fraction`, the given box scaled (its proportions kept) so that the
+/// grains fill that fraction; otherwise the box as given, which must hold them. Either
+/// way the longest grain must fit.
+pub(super) fn sized_box(
+    src: &Source,
+    raw: &RawScene,
+    domain: Domain,
+    phases: &[Phase],
+    volume: f64,
+) -> Result<Domain, SceneError> {
+    let fits = |domain: &Domain, at: std::ops::Range<usize>, key: &str| {
+        let longest = phases.iter().map(Phase::max_length).fold(0.0, f64::max);
+        if longest >= domain.min_side() {
+            return Err(src.invalid(
+                key,
+                at,
+                format!(
+                    "the longest grain ({longest} end to end) does not fit in the \
+                     box, whose shortest side is {}",
+                    domain.min_side()
+                ),
+            ));
+        }
+        Ok(())
+    };
+    match &raw.target_fraction {
+        Some(f) => {
             let phi = *f.get_ref();
             if !(phi > 0.0 && phi <= MAX_TARGET_FRACTION) {
                 return Err(src.invalid_at(
@@ -156,12 +175,12 @@ pub(super) fn exact_scene(
                 ..domain
             };
             fits(&scaled, f.span(), "target_fraction")?;
-            Ok((GrainCount::Exactly(count), scaled))
+            Ok(scaled)
         }
-        (_, None) => {
+        None => {
             let at = raw.domain.get_ref().size.span();
             fits(&domain, at.clone(), "box.size")?;
-            let phi = fraction_of(&domain);
+            let phi = volume / domain.volume();
             if phi > MAX_TARGET_FRACTION {
                 return Err(src.invalid(
                     "box.size",
@@ -173,7 +192,7 @@ pub(super) fn exact_scene(
                     ),
                 ));
             }
-            Ok((GrainCount::Exactly(count), domain))
+            Ok(domain)
         }
     }
 }
