@@ -38,7 +38,8 @@ pub struct GrainSpec {
     /// Tilt angle `θ` in radians, for phases with a tilt orientation.
     pub tilt: Option<f64>,
     /// The unit axis the grain may turn about under [`Rotation::Axis`]: its phase's
-    /// tilt axis; `None` (it keeps its orientation) for other phases.
+    /// tilt axis; for a `fisher` phase its own first axis (its spin changes); `None`
+    /// (it keeps its orientation) for other phases.
     ///
     /// [`Rotation::Axis`]: super::Rotation::Axis
     pub turn_axis: Option<[f64; 3]>,
@@ -147,6 +148,7 @@ impl Phase {
             return Ok(GrainSpec {
                 semi_axes,
                 aspect_ratio: 1.0 / beta,
+                turn_axis: turn_axis(&self.orientation, q),
                 ..GrainSpec::new(index, d, 1.0, q, None)
             });
         }
@@ -158,12 +160,8 @@ impl Phase {
             .orientation
             .sample(rng)
             .ok_or_else(|| rejected("tilt angle"))?;
-        let turn_axis = match &self.orientation {
-            Orientation::Tilt { axis, .. } => Some(axis.unit()),
-            _ => None,
-        };
         Ok(GrainSpec {
-            turn_axis,
+            turn_axis: turn_axis(&self.orientation, q),
             ..GrainSpec::new(index, d, alpha, q, tilt)
         })
     }
@@ -205,9 +203,7 @@ impl Phase {
         if let Some(c) = g.crystal {
             spec.crystal = c;
         }
-        if let Orientation::Tilt { axis, .. } = self.orientation {
-            spec.turn_axis = Some(axis.unit());
-        }
+        spec.turn_axis = turn_axis(&self.orientation, q);
         Some(spec)
     }
 
@@ -334,6 +330,17 @@ impl Scene {
             grains.truncate(keep.max(first_drawn + 1).min(grains.len()));
         }
         Ok(grains)
+    }
+}
+
+/// The axis a grain of orientation `q` may turn about under `rotation = "axis"`: a
+/// tilt phase's tilt axis (the tilt angle changes); a `fisher` phase's grain its own
+/// first axis (only the spin changes, so the law of the first axis is kept).
+fn turn_axis(orientation: &Orientation, q: [f64; 4]) -> Option<[f64; 3]> {
+    match orientation {
+        Orientation::Tilt { axis, .. } => Some(axis.unit()),
+        Orientation::Fisher(_) => Some(crate::contact::rotation_column(q, 0)),
+        _ => None,
     }
 }
 

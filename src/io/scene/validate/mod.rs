@@ -345,7 +345,7 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
                 return Err(src.invalid_at(
                     "packing.rotation",
                     v,
-                    "must be false (orientations as drawn), true (grains turn freely) or \"axis\" (grains of tilt phases turn about the tilt axis)",
+                    "must be false (orientations as drawn), true (grains turn freely) or \"axis\" (grains of tilt phases turn about the tilt axis, of fisher phases about their first axis)",
                 ))
             }
         };
