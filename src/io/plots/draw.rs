@@ -1,15 +1,12 @@
 //! Drawing the statistics figure with plotters, into an RGB buffer.
 
-use super::cdf::draw_cdf_panel;
-use super::extra::Extra;
 use super::histogram::{aligned_bins, freedman_diaconis_bins, Histogram};
-use super::panel::{Panel, Row};
+use super::panel::Panel;
 use super::target::Target;
-use super::{PlotError, COLUMNS, PANEL_WIDTH, TITLE_HEIGHT};
+use super::PlotError;
 use crate::laws::Moments;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::sync::OnceLock;
 
 /// The family name the embedded font is registered under.
@@ -17,9 +14,6 @@ pub(super) const FONT: &str = "DejaVu Sans";
 
 /// The embedded font (DejaVu Sans, licence in `assets/fonts/DejaVu-LICENSE.txt`).
 static FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
-
-/// Height of a row's heading, in pixels.
-const HEADING_HEIGHT: u32 = 40;
 
 /// The y axis reaches this multiple of the tallest bar or curve, leaving room for the
 /// legend above the data.
@@ -65,88 +59,6 @@ pub(super) fn failed<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> Plot
         what: what.to_string(),
         message: e.to_string(),
     }
-}
-
-/// Draws the whole figure into `rgb` (`3 · width · height` bytes).
-pub(super) fn figure(
-    rgb: &mut [u8],
-    size: (u32, u32),
-    rows: &[Row],
-    grains: usize,
-) -> Result<(), PlotError> {
-    register_font()?;
-    let root = BitMapBackend::with_buffer(rgb, size).into_drawing_area();
-    root.fill(&WHITE).map_err(failed("the background"))?;
-    let (title, body) = root.split_vertically(TITLE_HEIGHT);
-    let centred = |size: u32| {
-        (FONT, size)
-            .into_font()
-            .color(&BLACK)
-            .pos(Pos::new(HPos::Center, VPos::Center))
-    };
-    title
-        .draw_text(
-            &format!(
-                "Grain statistics: {grains} packed grains against the scene\u{2019}s laws \
-                 (legends: mean \u{b1} standard deviation)"
-            ),
-            &centred(24),
-            ((size.0 / 2) as i32, (TITLE_HEIGHT / 2) as i32),
-        )
-        .map_err(failed("the title"))?;
-    let lines: usize = rows.iter().map(Row::lines).sum();
-    let mut areas = body.split_evenly((lines, 1)).into_iter();
-    for row in rows {
-        let in_row = |e: PlotError| match e {
-            PlotError::Draw { what, message } => PlotError::Draw {
-                what: format!("{what} of {}", row.title),
-                message,
-            },
-            other => other,
-        };
-        let Some(area) = areas.next() else { break };
-        for (panel, area) in row.panels.iter().zip(line(&area, &row.title)?) {
-            draw_panel(&area, panel).map_err(in_row)?;
-        }
-        for chunk in row.extra.chunks(COLUMNS as usize) {
-            let Some(area) = areas.next() else { break };
-            let heading = format!("{} (continued)", row.title.split(':').next().unwrap_or(""));
-            for (panel, area) in chunk.iter().zip(line(&area, &heading)?) {
-                match panel {
-                    Extra::Density(p) => draw_panel(&area, p),
-                    Extra::Cdf(p) => draw_cdf_panel(&area, p),
-                }
-                .map_err(in_row)?;
-            }
-        }
-    }
-    root.present().map_err(failed("the figure"))
-}
-
-/// Draws a line's heading (a rule and `title`) and returns the areas of its
-/// [`COLUMNS`] panels.
-fn line<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    title: &str,
-) -> Result<Vec<DrawingArea<DB, Shift>>, PlotError> {
-    let (heading, panels) = area.split_vertically(HEADING_HEIGHT);
-    heading
-        .draw(&PathElement::new(
-            vec![(16, 0), ((COLUMNS * PANEL_WIDTH) as i32 - 16, 0)],
-            BLACK.mix(0.25).stroke_width(1),
-        ))
-        .map_err(failed(title))?;
-    heading
-        .draw_text(
-            title,
-            &(FONT, 20)
-                .into_font()
-                .color(&BLACK)
-                .pos(Pos::new(HPos::Left, VPos::Center)),
-            (24, (HEADING_HEIGHT / 2) as i32),
-        )
-        .map_err(failed(title))?;
-    Ok(panels.split_evenly((1, COLUMNS as usize)))
 }
 
 /// The x interval the histograms cover: the law's range and every finite value.
@@ -236,7 +148,7 @@ fn no_negative_zero(x: f64, decimals: usize) -> f64 {
 }
 
 /// Draws one panel: the packed histogram, the target law, the voxel outline, a legend.
-fn draw_panel<DB: DrawingBackend>(
+pub(super) fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
 ) -> Result<(), PlotError> {

@@ -5,7 +5,7 @@
 //! the run's statistics, not computed again).
 
 use super::cdf::CdfPanel;
-use super::panel::{axis_polar_angle, Panel};
+use super::panel::{axis_polar_angle, Panel, Row};
 use super::target::{
     curve, distribution_target, histogram_curve, law_moments, law_name, tilt_curve_window, Target,
 };
@@ -24,6 +24,32 @@ pub(super) enum Extra {
     Density(Panel),
     /// A CDF against a tabulated one.
     Cdf(CdfPanel),
+}
+
+/// Completes the rows of the figure (one per phase, from [`rows`](super::panel::rows)):
+/// their panels get the table's targets of a measured phase ([`set_measured`]) and the
+/// KS distances of `statistics` ([`set_ks`]); returns each phase's extra panels
+/// ([`panels`]).
+pub(super) fn complete(
+    rows: &mut [Row],
+    phases: &[Phase],
+    packed: &[PackedGrain],
+    voxel: Option<&[VoxelSample]>,
+    statistics: Option<&[PhaseStatistics]>,
+) -> Vec<Vec<Extra>> {
+    rows.iter_mut()
+        .zip(phases)
+        .enumerate()
+        .map(|(index, (row, phase))| {
+            let grains: Vec<&PackedGrain> = packed.iter().filter(|g| g.phase == index).collect();
+            let samples: Option<Vec<&VoxelSample>> =
+                voxel.map(|v| v.iter().filter(|s| s.phase == index).collect());
+            let stats = statistics.and_then(|s| s.get(index));
+            set_measured(&mut row.panels, phase);
+            set_ks(&mut row.panels, phase, stats);
+            panels(phase, &grains, samples.as_deref(), stats)
+        })
+        .collect()
 }
 
 /// Puts the KS distances of `stats` (the phase's `summary.json` entry) into the

@@ -33,6 +33,7 @@
 mod cdf;
 mod draw;
 mod extra;
+mod figure;
 mod histogram;
 mod panel;
 mod poles;
@@ -201,8 +202,9 @@ pub fn render_run_statistics_png(
     if phases.is_empty() {
         return Err(PlotError::NoPhases);
     }
-    let rows = panel::rows(phases, packed, voxel, statistics)?;
-    let (width, height) = statistics_png_size(rows.iter().map(panel::Row::lines).sum());
+    let mut rows = panel::rows(phases, packed, voxel)?;
+    let extras = extra::complete(&mut rows, phases, packed, voxel, statistics);
+    let (width, height) = statistics_png_size(figure::line_count(&extras));
     let height = u32::try_from(height)
         .ok()
         .filter(|&h| h <= MAX_HEIGHT)
@@ -212,7 +214,7 @@ pub fn render_run_statistics_png(
         })?;
     let width = width as u32;
     let mut rgb = vec![0u8; 3 * width as usize * height as usize];
-    draw::figure(&mut rgb, (width, height), &rows, packed.len())?;
+    figure::figure(&mut rgb, (width, height), &rows, &extras, packed.len())?;
     encode_rgb(out, (width, height), &rgb)
 }
 

@@ -8,7 +8,6 @@ use super::{PlotError, VoxelSample};
 use crate::contact::{ellipsoid_volume, equivalent_diameter, rotation_column};
 use crate::laws::{Moments, VonMisesCdf};
 use crate::packing::PackedGrain;
-use crate::run::PhaseStatistics;
 use crate::scene::{aspect_ratio, tilt_angle, Orientation, Phase};
 use std::f64::consts::PI;
 
@@ -63,15 +62,6 @@ pub(super) struct Row {
     pub title: String,
     /// Equivalent diameter, aspect ratio, angle.
     pub panels: [Panel; 3],
-    /// Panels for the phase's other laws, on lines of [`COLUMNS`](super::COLUMNS) below.
-    pub extra: Vec<super::extra::Extra>,
-}
-
-impl Row {
-    /// Lines of panels the row takes: its three, then its extra panels.
-    pub fn lines(&self) -> usize {
-        1 + self.extra.len().div_ceil(super::COLUMNS as usize)
-    }
 }
 
 /// The rows of the figure, one per phase, after checking that every grain and voxel
@@ -80,7 +70,6 @@ pub(super) fn rows(
     phases: &[Phase],
     packed: &[PackedGrain],
     voxel: Option<&[VoxelSample]>,
-    statistics: Option<&[PhaseStatistics]>,
 ) -> Result<Vec<Row>, PlotError> {
     if let Some(g) = packed.iter().find(|g| g.phase >= phases.len()) {
         return Err(PlotError::GrainPhase {
@@ -178,14 +167,9 @@ pub(super) fn rows(
             };
             let mut angle = angle_panel(&phase.orientation, &grains);
             angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
-            let stats = statistics.and_then(|s| s.get(index));
-            let mut panels = [diameter, aspect, angle];
-            super::extra::set_measured(&mut panels, phase);
-            super::extra::set_ks(&mut panels, phase, stats);
             Row {
                 title,
-                panels,
-                extra: super::extra::panels(phase, &grains, samples.as_deref(), stats),
+                panels: [diameter, aspect, angle],
             }
         })
         .collect())
