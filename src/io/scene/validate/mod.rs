@@ -63,7 +63,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
     // grain volume and the box (see mixed.rs).
     let exact: Vec<bool> = phases.iter().map(mixed::is_exact).collect();
     let (count, domain) = if !exact.is_empty() && exact.iter().all(|&e| e) {
-        measured::exact_scene(&src, &raw, domain, &mut phases)?
+        mixed::exact_scene(&src, &raw, domain, &mut phases)?
     } else if exact.iter().any(|&e| e) {
         mixed::mixed_scene(&src, &raw, domain, &mut phases)?
     } else {
