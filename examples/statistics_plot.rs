@@ -50,6 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     _ => axis_polar_angle(g.quaternion),
                 }),
                 shape_ratios: None,
+                spin: None,
             })
             .collect()
     });

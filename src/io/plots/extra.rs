@@ -190,7 +190,11 @@ pub(super) fn panels(
                     .to_degrees()
                 })
                 .collect(),
-            voxel: None,
+            voxel: voxel.map(|v| {
+                v.iter()
+                    .filter_map(|s| s.spin.map(f64::to_degrees))
+                    .collect()
+            }),
             ks_distance: stats.and_then(|s| s.orientation_3d.and_then(|o| o.spin_deg.ks_distance)),
         }));
     }

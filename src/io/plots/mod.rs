@@ -86,6 +86,9 @@ pub struct VoxelSample {
     /// The moment ellipsoid's semi-axis ratios sorted `a ≥ b ≥ c`: `[b/a, c/a, c/b]`,
     /// compared with a triaxial phase's shape-ratio laws; `None` when not measured.
     pub shape_ratios: Option<[f64; 3]>,
+    /// For a `fisher` phase, the spin (radians) of the moment ellipsoid's middle axis
+    /// about its first axis, as the packed grains' spin is measured; else `None`.
+    pub spin: Option<f64>,
 }
 
 /// Why the statistics figure could not be made.

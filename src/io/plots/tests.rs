@@ -46,6 +46,7 @@ fn voxel_samples(packed: &[PackedGrain]) -> Vec<VoxelSample> {
             aspect_ratio: 1.05 * aspect_ratio(g.semi_axes),
             tilt: Some(0.3),
             shape_ratios: None,
+            spin: None,
         })
         .collect()
 }

@@ -166,10 +166,9 @@ fn voxel_samples(
                     c(a).total_cmp(&c(b))
                 })
                 .unwrap_or(0);
-            let others: Vec<f64> = (0..3)
-                .filter(|&m| m != k)
-                .map(|m| shape.semi_axes[m])
-                .collect();
+            // The other two, larger first (the moments are sorted largest first).
+            let rest: Vec<usize> = (0..3).filter(|&m| m != k).collect();
+            let others: Vec<f64> = rest.iter().map(|&m| shape.semi_axes[m]).collect();
             let a1 = shape.semi_axes[k];
             let a2 = (others[0] * others[1]).sqrt();
             let axis = shape.axes[k];
@@ -187,6 +186,20 @@ fn voxel_samples(
                 Orientation::Fisher(law) => Some(law.axis_angle(axis)),
                 _ => Some(axis[2].abs().min(1.0).acos()),
             };
+            let spin = match &phases.get(g.phase)?.orientation {
+                Orientation::Fisher(law) => {
+                    // The middle axis, signed like the packed second axis.
+                    let b = shape.axes[rest[0]];
+                    let packed_b = rotation_column(g.quaternion, 1);
+                    let b = if dot(&b, &packed_b) < 0.0 {
+                        b.map(|x| -x)
+                    } else {
+                        b
+                    };
+                    Some(law.spin_angle(axis, b))
+                }
+                _ => None,
+            };
             Some(VoxelSample {
                 phase: g.phase,
                 // A sphere of the voxel volume: (6V/π)^(1/3).
@@ -194,7 +207,68 @@ fn voxel_samples(
                 aspect_ratio: a1 / a2,
                 tilt,
                 shape_ratios: Some([shape.b_over_a, shape.c_over_a, shape.c_over_b]),
+                spin,
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// A few well-resolved triaxial `fisher` grains, far apart: their voxel shapes
+    /// give back their ratios and their spin.
+    #[test]
+    fn voxel_samples_of_triaxial_fisher_grains_give_their_ratios_and_spin() {
+        let scene = Scene::from_str(
+            r#"
+            seed = 3
+            grains = 4
+            [box]
+            size = [40, 40, 40]
+            [[phase]]
+            size = { distribution = "constant", value = 12 }
+            b_over_a = { distribution = "constant", value = 0.6 }
+            c_over_a = { distribution = "constant", value = 0.3 }
+            orientation = { kind = "fisher", direction = "x", kappa = 5, spin_reference = "y", spin_kappa = 1 }
+            "#,
+            "test.toml",
+        )
+        .unwrap();
+        let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+        // a1 = 0.8 · 6 · (0.6 · 0.3)^(−1/3) ≈ 8.5: grains at most 17 long, their
+        // centres (and periodic images) at least 20·√2 ≈ 28 apart.
+        let centres = [
+            [10.0, 10.0, 10.0],
+            [30.0, 30.0, 10.0],
+            [10.0, 30.0, 30.0],
+            [30.0, 10.0, 30.0],
+        ];
+        let grains: Vec<PackedGrain> = specs
+            .iter()
+            .zip(centres)
+            .enumerate()
+            .map(|(i, (s, c))| PackedGrain::of_spec(i as u32, s, 0.8, c, s.quaternion))
+            .collect();
+        let grid = voxelise(&grains, &scene.domain, [100; 3], RveFill::Matrix, 1).unwrap();
+        let report = grain_report(&grid, &grains).unwrap();
+        let samples = voxel_samples(&report, &grains, &scene.phases);
+        assert_eq!(samples.len(), 4);
+        let Orientation::Fisher(law) = scene.phases[0].orientation else {
+            panic!("fisher")
+        };
+        for (s, g) in samples.iter().zip(&grains) {
+            // c ≈ 2.5 units = 6 voxels across its semi-axis: ratios within a few per cent.
+            let [ba, ca, _] = s.shape_ratios.unwrap();
+            assert!((ba / 0.6 - 1.0).abs() < 0.06, "{s:?}");
+            assert!((ca / 0.3 - 1.0).abs() < 0.08, "{s:?}");
+            // The moment axes are those of the ellipsoid to a degree or two.
+            let e = rotation_column(g.quaternion, 0);
+            let packed = law.spin_angle(e, rotation_column(g.quaternion, 1));
+            let d = (s.spin.unwrap() - packed).abs().to_degrees();
+            assert!(d < 3.0, "spin {:?} vs {packed}: {d}°", s.spin);
+        }
+    }
 }
