@@ -49,6 +49,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     Orientation::Tilt { axis, angle } => tilt_angle(g.quaternion, axis, &angle),
                     _ => axis_polar_angle(g.quaternion),
                 }),
+                shape_ratios: None,
+                spin: None,
             })
             .collect()
     });

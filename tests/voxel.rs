@@ -220,6 +220,15 @@ fn report_recovers_the_shape_of_a_well_resolved_ellipsoid_even_across_faces() {
         assert!(s.major_axis_angle_deg < 2.0, "{s:?}");
         assert!(s.centroid_offset < grid.spacing()[0], "{s:?}");
         assert!((s.aspect_ratio - 3.0).abs() < 0.1, "{s:?}");
+        // DREAM.3D's ratios of the triaxial grain (b/a = 1/2, c/a = 1/3, c/b = 2/3):
+        // each a ratio of two semi-axes within 3 %, so within about 6 %.
+        for (got, want) in [
+            (s.b_over_a, 0.5),
+            (s.c_over_a, 1.0 / 3.0),
+            (s.c_over_b, 2.0 / 3.0),
+        ] {
+            assert!((got / want - 1.0).abs() < 0.06, "{got} vs {want}: {s:?}");
+        }
     }
 }
 

@@ -9,7 +9,7 @@ OUT_DIR is a directory `pack` wrote. The grains of `grains.csv` are the referenc
 - `grains.vtu`, read with meshio and with PyVista (VTK's own reader): one closed,
   outward-oriented surface per grain, its points on the ellipsoid of the CSV row, its
   cell data (`grain_id`, `phase`, `volume`, `equivalent_diameter`, `aspect_ratio`,
-  `periodic_image`) present and equal to what the CSV gives. The mesh volume of every
+  `b_over_a`, `c_over_a`, `periodic_image`) present and equal to what the CSV gives. The mesh volume of every
   grain is the same fraction of its ellipsoid's (the map from the icosphere is
   affine), and that fraction is the one docs/config.md lists for the resolution.
   Periodic copies, if any, are their grain shifted by whole box lengths.
@@ -46,7 +46,7 @@ VOLUME_RATIO = {1: 0.8735, 2: 0.9662, 3: 0.9914, 4: 0.9978, 5: 0.9995, 6: 0.9998
 VOLUME_RATIO_TOL = 1e-4
 
 VTU_ARRAYS = ["grain_id", "phase", "volume", "equivalent_diameter", "aspect_ratio",
-              "periodic_image"]
+              "b_over_a", "c_over_a", "periodic_image"]
 VTP_ARRAYS = ["grain_id", "phase", "semi_axes", "shape_tensor", "quadratic_form"]
 
 failures = []
@@ -122,9 +122,12 @@ def check_vtu(path, g, box, n_phases):
     inst = np.arange(len(tri)) // t
     check(np.all(gid.reshape(-1, t) == gid[::t, None]), "grain_id varies within a surface")
     first = gid[::t]
+    sorted_axes = -np.sort(-g["axes"], axis=1)  # a >= b >= c
     for name, want in [("phase", g["phase"]), ("volume", g["volume"]),
                        ("equivalent_diameter", (6 * g["volume"] / math.pi) ** (1 / 3)),
-                       ("aspect_ratio", g["axes"][:, 0] / g["axes"][:, 1])]:
+                       ("aspect_ratio", g["axes"][:, 0] / g["axes"][:, 1]),
+                       ("b_over_a", sorted_axes[:, 1] / sorted_axes[:, 0]),
+                       ("c_over_a", sorted_axes[:, 2] / sorted_axes[:, 0])]:
         check(close(data[name], want[gid]), f"cell data {name} differs from grains.csv")
     check(np.all(data["volume"] > 0), "a volume is not positive")
     check(np.all((data["phase"] >= 0) & (data["phase"] < n_phases)), "phase out of range")

@@ -20,11 +20,14 @@
 mod quantity;
 mod reachable;
 mod shape_statistics;
+mod size_table;
 mod statistics;
 
 pub use quantity::QuantityStatistics;
 pub use reachable::Drawn;
 pub use shape_statistics::{OrientationStatistics, RatioStatistics, ShapeStatistics};
+pub use size_table::SizeTableStatistics;
+pub(crate) use size_table::WeightedCdf;
 pub use statistics::{PhaseStatistics, Share, Statistics, TurnStatistics};
 
 use crate::packing::{pack, Job, PackError, Packing, Progress, Tuning, Verification};

@@ -61,6 +61,7 @@ impl Statistics {
                     tilt_angle_deg,
                     shape: super::shape_statistics::shape(phase, &grains),
                     orientation_3d: super::shape_statistics::orientation(phase, &grains),
+                    size_table: super::size_table::size_table(&phase.size, &grains),
                 }
             })
             .collect();
@@ -133,6 +134,10 @@ pub struct PhaseStatistics {
     /// For `kind = "fisher"`: the first axis's angle to the mean direction and the spin.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub orientation_3d: Option<super::shape_statistics::OrientationStatistics>,
+    /// For `distribution = "table"` sizes: the fraction passing each tabulated size,
+    /// by number or by volume as the table counts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_table: Option<super::size_table::SizeTableStatistics>,
 }
 
 /// `a / b`, or 0 when `b` is 0 (no grains).

@@ -38,7 +38,8 @@ pub struct GrainSpec {
     /// Tilt angle `θ` in radians, for phases with a tilt orientation.
     pub tilt: Option<f64>,
     /// The unit axis the grain may turn about under [`Rotation::Axis`]: its phase's
-    /// tilt axis; `None` (it keeps its orientation) for other phases.
+    /// tilt axis; for a `fisher` phase its own first axis (its spin changes); `None`
+    /// (it keeps its orientation) for other phases.
     ///
     /// [`Rotation::Axis`]: super::Rotation::Axis
     pub turn_axis: Option<[f64; 3]>,
@@ -147,6 +148,7 @@ impl Phase {
             return Ok(GrainSpec {
                 semi_axes,
                 aspect_ratio: 1.0 / beta,
+                turn_axis: turn_axis(&self.orientation, q),
                 ..GrainSpec::new(index, d, 1.0, q, None)
             });
         }
@@ -158,12 +160,8 @@ impl Phase {
             .orientation
             .sample(rng)
             .ok_or_else(|| rejected("tilt angle"))?;
-        let turn_axis = match &self.orientation {
-            Orientation::Tilt { axis, .. } => Some(axis.unit()),
-            _ => None,
-        };
         Ok(GrainSpec {
-            turn_axis,
+            turn_axis: turn_axis(&self.orientation, q),
             ..GrainSpec::new(index, d, alpha, q, tilt)
         })
     }
@@ -202,9 +200,10 @@ impl Phase {
         };
         spec.quaternion = q;
         spec.tilt = tilt;
-        if let Orientation::Tilt { axis, .. } = self.orientation {
-            spec.turn_axis = Some(axis.unit());
+        if let Some(c) = g.crystal {
+            spec.crystal = c;
         }
+        spec.turn_axis = turn_axis(&self.orientation, q);
         Some(spec)
     }
 
@@ -222,21 +221,14 @@ impl Phase {
 }
 
 impl Scene {
-    /// The grains of a scene whose phases all take exactly their measured grains
-    /// (validation makes it all or none): each phase's rows in table order, phase after
-    /// phase. `None` for other scenes.
-    fn exact_grains<R: Rng + ?Sized>(
-        &self,
-        rng: &mut R,
-    ) -> Result<Option<Vec<GrainSpec>>, SampleError> {
-        use super::MeasuredMode;
-        let exact = |p: &Phase| matches!(&p.measured, Some(m) if m.mode == MeasuredMode::Exact);
-        if self.phases.is_empty() || !self.phases.iter().all(exact) {
-            return Ok(None);
-        }
+    /// The grains of the phases that take exactly their measured grains: each such
+    /// phase's rows in table order, phase after phase (empty for a scene without).
+    fn exact_grains<R: Rng + ?Sized>(&self, rng: &mut R) -> Result<Vec<GrainSpec>, SampleError> {
         let mut grains = Vec::new();
         for (index, phase) in self.phases.iter().enumerate() {
-            let m = phase.measured.as_ref().expect("checked above");
+            let Some(m) = phase.measured.as_ref().filter(|_| is_exact(phase)) else {
+                continue;
+            };
             for g in m.grains.iter() {
                 let spec = phase.measured_grain(index, g, rng).ok_or_else(|| {
                     SampleError::TooManyRejections {
@@ -249,7 +241,7 @@ impl Scene {
                 grains.push(spec);
             }
         }
-        Ok(Some(grains))
+        Ok(grains)
     }
 
     /// The scene's random generator: ChaCha8 seeded with [`Scene::seed`], whose stream
@@ -265,7 +257,13 @@ impl Scene {
     /// the grains a seed gives.
     pub fn sample_crystals<R: Rng + ?Sized>(&self, grains: &mut [GrainSpec], rng: &mut R) {
         for g in grains {
-            g.crystal = self.phases[g.phase].texture.texture.sample(rng);
+            // Drawn even where a measured table gives the crystal (kept, set by
+            // `measured_grain`), so that the other grains' draws do not depend on it.
+            let drawn = self.phases[g.phase].texture.texture.sample(rng);
+            let measured = self.phases[g.phase].measured.as_ref();
+            if !measured.is_some_and(|m| m.has_crystals()) {
+                g.crystal = drawn;
+            }
         }
     }
 
@@ -288,8 +286,11 @@ impl Scene {
         &self,
         rng: &mut R,
     ) -> Result<Vec<GrainSpec>, SampleError> {
-        if let Some(grains) = self.exact_grains(rng)? {
-            return Ok(grains);
+        // Exact tables first: all of their grains, once each. A scene of exact tables
+        // only ends there; a mixed one draws its other phases up to their shares.
+        let exact = self.exact_grains(rng)?;
+        if self.phases.iter().all(is_exact) {
+            return Ok(exact);
         }
         let done = |count: usize, volume: f64| match self.count {
             GrainCount::Exactly(n) => count >= n,
@@ -301,14 +302,20 @@ impl Scene {
         let mut grains =
             Vec::with_capacity(self.expected_count().ceil().min(MAX_GRAINS as f64) as usize);
         let mut drawn = vec![0.0; self.phases.len()];
-        let mut total = 0.0;
+        for g in &exact {
+            drawn[g.phase] += g.volume();
+        }
+        let mut total: f64 = drawn.iter().sum();
+        let first_drawn = exact.len();
+        grains.extend(exact);
+        let p0 = self.phases.iter().position(|p| !is_exact(p)).unwrap_or(0);
         while !done(grains.len(), total) {
             if grains.len() >= limit {
                 return Err(SampleError::TooManyGrains { limit });
             }
-            let mut p = 0;
+            let mut p = p0;
             for (i, phase) in self.phases.iter().enumerate() {
-                if drawn[i] / phase.share < drawn[p] / self.phases[p].share {
+                if !is_exact(phase) && drawn[i] / phase.share < drawn[p] / self.phases[p].share {
                     p = i;
                 }
             }
@@ -318,10 +325,28 @@ impl Scene {
             grains.push(grain);
         }
         if let GrainCount::Fraction(f) = self.count {
-            grains.truncate(nearest_count(&grains, f * self.domain.volume()));
+            // Only a drawn grain may be dropped, never one of an exact table.
+            let keep = nearest_count(&grains, f * self.domain.volume());
+            grains.truncate(keep.max(first_drawn + 1).min(grains.len()));
         }
         Ok(grains)
     }
+}
+
+/// The axis a grain of orientation `q` may turn about under `rotation = "axis"`: a
+/// tilt phase's tilt axis (the tilt angle changes); a `fisher` phase's grain its own
+/// first axis (only the spin changes, so the law of the first axis is kept).
+fn turn_axis(orientation: &Orientation, q: [f64; 4]) -> Option<[f64; 3]> {
+    match orientation {
+        Orientation::Tilt { axis, .. } => Some(axis.unit()),
+        Orientation::Fisher(_) => Some(crate::contact::rotation_column(q, 0)),
+        _ => None,
+    }
+}
+
+/// Whether `phase` takes exactly its measured grains (`mode = "exact"`).
+fn is_exact(phase: &Phase) -> bool {
+    matches!(&phase.measured, Some(m) if m.mode == super::MeasuredMode::Exact)
 }
 
 /// Of the grains drawn until their volumes first reached `target`, how many to keep so

@@ -15,6 +15,10 @@ pub struct MeasuredGrain {
     /// Unit quaternion `[w, x, y, z]`, if the table gives it (else the phase's
     /// orientation law).
     pub quaternion: Option<[f64; 4]>,
+    /// Crystal orientation in the sample frame (scalar-first unit quaternion, as
+    /// `grains.csv` writes it in `o0..o3`), if the table gives it (else the phase's
+    /// texture).
+    pub crystal: Option<[f64; 4]>,
 }
 
 impl MeasuredGrain {
@@ -24,6 +28,7 @@ impl MeasuredGrain {
             diameter: equivalent_diameter(semi_axes),
             semi_axes: Some(semi_axes),
             quaternion,
+            crystal: None,
         }
     }
 
@@ -61,6 +66,11 @@ impl Measured {
     /// Whether the table gives orientations (then every row does).
     pub fn has_orientations(&self) -> bool {
         self.grains[0].quaternion.is_some()
+    }
+
+    /// Whether the table gives crystal orientations (then every row does).
+    pub fn has_crystals(&self) -> bool {
+        self.grains[0].crystal.is_some()
     }
 
     /// Total volume of the grains, `Σ π d³/6`.

@@ -1,13 +1,12 @@
 //! Drawing the statistics figure with plotters, into an RGB buffer.
 
 use super::histogram::{aligned_bins, freedman_diaconis_bins, Histogram};
-use super::panel::{Panel, Row};
+use super::panel::Panel;
 use super::target::Target;
-use super::{PlotError, PANEL_WIDTH, TITLE_HEIGHT};
+use super::PlotError;
 use crate::laws::Moments;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::sync::OnceLock;
 
 /// The family name the embedded font is registered under.
@@ -15,9 +14,6 @@ pub(super) const FONT: &str = "DejaVu Sans";
 
 /// The embedded font (DejaVu Sans, licence in `assets/fonts/DejaVu-LICENSE.txt`).
 static FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
-
-/// Height of a row's heading, in pixels.
-const HEADING_HEIGHT: u32 = 40;
 
 /// The y axis reaches this multiple of the tallest bar or curve, leaving room for the
 /// legend above the data.
@@ -65,69 +61,6 @@ pub(super) fn failed<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> Plot
     }
 }
 
-/// Draws the whole figure into `rgb` (`3 · width · height` bytes).
-pub(super) fn figure(
-    rgb: &mut [u8],
-    size: (u32, u32),
-    rows: &[Row],
-    columns: u32,
-    grains: usize,
-) -> Result<(), PlotError> {
-    register_font()?;
-    let root = BitMapBackend::with_buffer(rgb, size).into_drawing_area();
-    root.fill(&WHITE).map_err(failed("the background"))?;
-    let (title, body) = root.split_vertically(TITLE_HEIGHT);
-    let centred = |size: u32| {
-        (FONT, size)
-            .into_font()
-            .color(&BLACK)
-            .pos(Pos::new(HPos::Center, VPos::Center))
-    };
-    title
-        .draw_text(
-            &format!(
-                "Grain statistics: {grains} packed grains against the scene\u{2019}s laws \
-                 (legends: mean \u{b1} standard deviation)"
-            ),
-            &centred(24),
-            ((size.0 / 2) as i32, (TITLE_HEIGHT / 2) as i32),
-        )
-        .map_err(failed("the title"))?;
-    for (row, area) in rows.iter().zip(body.split_evenly((rows.len(), 1))) {
-        let (heading, panels) = area.split_vertically(HEADING_HEIGHT);
-        heading
-            .draw(&PathElement::new(
-                vec![(16, 0), ((columns * PANEL_WIDTH) as i32 - 16, 0)],
-                BLACK.mix(0.25).stroke_width(1),
-            ))
-            .map_err(failed(&row.title))?;
-        heading
-            .draw_text(
-                &row.title,
-                &(FONT, 20)
-                    .into_font()
-                    .color(&BLACK)
-                    .pos(Pos::new(HPos::Left, VPos::Center)),
-                (24, (HEADING_HEIGHT / 2) as i32),
-            )
-            .map_err(failed(&row.title))?;
-        for (panel, area) in row
-            .panels
-            .iter()
-            .zip(panels.split_evenly((1, columns as usize)))
-        {
-            draw_panel(&area, panel).map_err(|e| match e {
-                PlotError::Draw { what, message } => PlotError::Draw {
-                    what: format!("{what} of {}", row.title),
-                    message,
-                },
-                other => other,
-            })?;
-        }
-    }
-    root.present().map_err(failed("the figure"))
-}
-
 /// The x interval the histograms cover: the law's range and every finite value.
 fn data_range(panel: &Panel) -> (f64, f64) {
     let values = panel.packed.iter().chain(panel.voxel.iter().flatten());
@@ -154,7 +87,7 @@ const Y_TICKS: usize = 6;
 /// labels. plotters spaces ticks by a step `{1, 2, 5} × 10ᵐ` giving at most `ticks`
 /// of them; the smallest such step above `span/ticks` is at most that step, so its
 /// decimals are enough for every label.
-fn tick_decimals(span: f64, ticks: usize) -> usize {
+pub(super) fn tick_decimals(span: f64, ticks: usize) -> usize {
     let raw = span / ticks as f64;
     if !(raw > 0.0 && raw.is_finite()) {
         return 0;
@@ -181,20 +114,41 @@ fn sample_label(name: &str, values: &[f64], unit: &str, decimals: usize) -> Stri
     }
 }
 
+/// The packed grains' legend entry, with the KS distance to the law when known.
+fn packed_label(panel: &Panel, unit: &str, decimals: usize) -> String {
+    let label = sample_label("packed grains", &panel.packed, unit, decimals);
+    match panel.ks_distance {
+        Some(d) => format!("{label}, KS {d:.3}"),
+        None => label,
+    }
+}
+
 /// The legend entry of the target law, with `decimals` decimals.
 fn law_label(panel: &Panel, unit: &str, decimals: usize) -> String {
     match (&panel.target, panel.law_moments) {
         (Target::Value(v), _) => format!("{}: {v:.decimals$}{unit}", panel.law),
         (Target::Curve(_), Some(m)) => format!(
             "{}: {:.decimals$}{unit} \u{b1} {:.decimals$}{unit}",
-            panel.law, m.mean, m.std
+            panel.law,
+            no_negative_zero(m.mean, decimals),
+            m.std
         ),
         (Target::Curve(_), None) => panel.law.clone(),
     }
 }
 
+/// `x`, or 0 if it prints as zero with `decimals` decimals: a mean of 0 computed by
+/// quadrature (`-1e-17`) would print as `-0.0`.
+fn no_negative_zero(x: f64, decimals: usize) -> f64 {
+    if x.abs() < 0.5 * 10f64.powi(-(decimals as i32)) {
+        0.0
+    } else {
+        x
+    }
+}
+
 /// Draws one panel: the packed histogram, the target law, the voxel outline, a legend.
-fn draw_panel<DB: DrawingBackend>(
+pub(super) fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
 ) -> Result<(), PlotError> {
@@ -282,7 +236,7 @@ fn draw_panel<DB: DrawingBackend>(
                 .map(|(a, b, d)| Rectangle::new([(a, 0.0), (b, d)], fill)),
         )
         .map_err(failed(what))?
-        .label(sample_label("packed grains", &panel.packed, unit, figures))
+        .label(packed_label(panel, unit, figures))
         .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 20, y + 6)], fill));
     chart
         .draw_series(std::iter::once(PathElement::new(

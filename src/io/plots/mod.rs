@@ -11,9 +11,9 @@
 //!   ([`axis_polar_angle`]) against the isotropic density `sin θ` (random orientations)
 //!   or a single value (aligned, fixed). The panel is never left out, so every figure has
 //!   three columns and a random orientation's isotropy can be checked by eye;
-//! - the **crystal texture**, a fourth column when textures are given
-//!   ([`TextureMeasure`]): the angle that measures the phase's texture against its
-//!   law under the target, with the KS distance of `summary.json`.
+//! - the **crystal texture**, when textures are given ([`TextureMeasure`]): the angle
+//!   that measures the phase's texture against its law under the target, with the KS
+//!   distance of `summary.json`, first on the phase's lines of extra panels below.
 //!
 //! Histograms are densities (total area 1) on Freedman–Diaconis bins
 //! ([`freedman_diaconis_bins`]) whose edges fall on the law's cutoffs ([`aligned_bins`]). A constant or fixed law is a vertical line at its
@@ -33,7 +33,10 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod cdf;
 mod draw;
+mod extra;
+mod figure;
 mod histogram;
 mod panel;
 mod poles;
@@ -47,6 +50,7 @@ pub use poles::{equal_area, render_pole_figures_png};
 use crate::io::atomic::write_atomically;
 use crate::io::texture::TextureMeasure;
 use crate::packing::PackedGrain;
+use crate::run::PhaseStatistics;
 use crate::scene::Phase;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -64,8 +68,8 @@ pub const TITLE_HEIGHT: u32 = 60;
 /// `3 · 1800 · 16384` bytes, 88 MB.
 pub const MAX_HEIGHT: u32 = 1 << 14;
 
-/// Panels per row: equivalent diameter, aspect ratio, angle (and the crystal
-/// texture, when textures are given: one column more).
+/// Panels per line: equivalent diameter, aspect ratio, angle on a phase's first line;
+/// its extra panels (crystal texture, third shape ratio, spin, size CDF) on lines below.
 pub const COLUMNS: u32 = 3;
 
 /// One grain measured in a voxel RVE, to compare with the packed grain it renders.
@@ -85,6 +89,12 @@ pub struct VoxelSample {
     ///
     /// [`tilt_angle`]: crate::scene::tilt_angle
     pub tilt: Option<f64>,
+    /// The moment ellipsoid's semi-axis ratios sorted `a ≥ b ≥ c`: `[b/a, c/a, c/b]`,
+    /// compared with a triaxial phase's shape-ratio laws; `None` when not measured.
+    pub shape_ratios: Option<[f64; 3]>,
+    /// For a `fisher` phase, the spin (radians) of the moment ellipsoid's middle axis
+    /// about its first axis, as the packed grains' spin is measured; else `None`.
+    pub spin: Option<f64>,
 }
 
 /// Why the statistics figure could not be made.
@@ -147,18 +157,14 @@ pub enum PlotError {
     },
 }
 
-/// The size in pixels `(width, height)` of the figure for `phases` phases:
-/// [`COLUMNS`] panels of [`PANEL_WIDTH`] across (one more with textures), a
-/// [`TITLE_HEIGHT`] strip and one [`ROW_HEIGHT`] row per phase down.
-pub fn statistics_png_size(phases: usize) -> (u64, u64) {
-    figure_size(phases, COLUMNS)
-}
-
-/// The size in pixels of a figure of `phases` rows of `columns` panels.
-fn figure_size(phases: usize, columns: u32) -> (u64, u64) {
+/// The size in pixels `(width, height)` of the figure with `lines` lines of panels:
+/// [`COLUMNS`] panels of [`PANEL_WIDTH`] across, a [`TITLE_HEIGHT`] strip and one
+/// [`ROW_HEIGHT`] line down per phase, plus one per [`COLUMNS`] extra panels of a
+/// phase (its crystal texture, third shape ratio, spin, or tabulated size CDF).
+pub fn statistics_png_size(lines: usize) -> (u64, u64) {
     (
-        u64::from(columns * PANEL_WIDTH),
-        u64::from(TITLE_HEIGHT) + phases as u64 * u64::from(ROW_HEIGHT),
+        u64::from(COLUMNS * PANEL_WIDTH),
+        u64::from(TITLE_HEIGHT) + lines as u64 * u64::from(ROW_HEIGHT),
     )
 }
 
@@ -168,7 +174,7 @@ fn figure_size(phases: usize, columns: u32) -> (u64, u64) {
 /// `packed` are the grains as packed (their phase indices into `phases`); `voxel`, the
 /// same grains measured in a voxel RVE, adds a second outline to each panel;
 /// `textures` (from [`measure_textures`](crate::io::texture::measure_textures)) add
-/// a texture panel to the row of each phase they measure.
+/// a texture panel to the extra panels of each phase they measure.
 pub fn write_statistics_png(
     path: &Path,
     phases: &[Phase],
@@ -194,17 +200,30 @@ pub fn render_statistics_png(
     voxel: Option<&[VoxelSample]>,
     textures: &[TextureMeasure],
 ) -> Result<(), PlotError> {
+    render_run_statistics_png(out, phases, packed, voxel, None, textures)
+}
+
+/// [`render_statistics_png`] for a run: the legends also give the KS distances of the
+/// run's statistics (`summary.json`'s, in `statistics`, one per phase).
+pub fn render_run_statistics_png(
+    out: &mut dyn Write,
+    phases: &[Phase],
+    packed: &[PackedGrain],
+    voxel: Option<&[VoxelSample]>,
+    statistics: Option<&[PhaseStatistics]>,
+    textures: &[TextureMeasure],
+) -> Result<(), PlotError> {
     if phases.is_empty() {
         return Err(PlotError::NoPhases);
     }
     let mut rows = panel::rows(phases, packed, voxel)?;
+    let mut extras = extra::complete(&mut rows, phases, packed, voxel, statistics);
     for m in textures {
-        if let Some(row) = rows.get_mut(m.phase) {
-            row.panels.push(texture::texture_panel(m));
+        if let Some(phase) = extras.get_mut(m.phase) {
+            phase.insert(0, extra::Extra::Density(texture::texture_panel(m)));
         }
     }
-    let columns = rows.iter().map(|r| r.panels.len()).max().unwrap_or(0) as u32;
-    let (width, height) = figure_size(phases.len(), columns);
+    let (width, height) = statistics_png_size(figure::line_count(&extras));
     let height = u32::try_from(height)
         .ok()
         .filter(|&h| h <= MAX_HEIGHT)
@@ -214,7 +233,7 @@ pub fn render_statistics_png(
         })?;
     let width = width as u32;
     let mut rgb = vec![0u8; 3 * width as usize * height as usize];
-    draw::figure(&mut rgb, (width, height), &rows, columns, packed.len())?;
+    figure::figure(&mut rgb, (width, height), &rows, &extras, packed.len())?;
     encode_rgb(out, (width, height), &rgb)
 }
 

@@ -51,6 +51,8 @@ pub(super) struct Panel {
     pub packed: Vec<f64>,
     /// The voxel grains' values, when voxel samples were given.
     pub voxel: Option<Vec<f64>>,
+    /// KS distance of the packed values to the law, as `summary.json` reports it.
+    pub ks_distance: Option<f64>,
 }
 
 /// One row of the figure: a phase.
@@ -58,8 +60,8 @@ pub(super) struct Panel {
 pub(super) struct Row {
     /// The row's heading.
     pub title: String,
-    /// Equivalent diameter, aspect ratio, angle; then the crystal texture, when shown.
-    pub panels: Vec<Panel>,
+    /// Equivalent diameter, aspect ratio, angle.
+    pub panels: [Panel; 3],
 }
 
 /// The rows of the figure, one per phase, after checking that every grain and voxel
@@ -131,6 +133,7 @@ pub(super) fn rows(
                     .map(|g| equivalent_diameter(g.semi_axes))
                     .collect(),
                 voxel: voxel_values(|s| Some(s.equivalent_diameter)),
+                ks_distance: None,
             };
             let aspect = Panel {
                 title: "aspect ratio".into(),
@@ -141,6 +144,7 @@ pub(super) fn rows(
                 target: distribution_target(&phase.aspect_ratio),
                 packed: grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect(),
                 voxel: voxel_values(|s| Some(s.aspect_ratio)),
+                ks_distance: None,
             };
             // Triaxial phases: b/a (a2/a1) against its law in place of a1/a2; the
             // summary has c/a and c/b too.
@@ -157,14 +161,15 @@ pub(super) fn rows(
                         .iter()
                         .map(|g| g.semi_axes[1] / g.semi_axes[0])
                         .collect(),
-                    voxel: None,
+                    voxel: voxel_values(|s| s.shape_ratios.map(|r| r[0])),
+                    ks_distance: None,
                 },
             };
             let mut angle = angle_panel(&phase.orientation, &grains);
             angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
             Row {
                 title,
-                panels: vec![diameter, aspect, angle],
+                panels: [diameter, aspect, angle],
             }
         })
         .collect())
@@ -193,6 +198,7 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
         target,
         packed: polar.clone(),
         voxel: None,
+        ks_distance: None,
     };
     match *orientation {
         Orientation::Tilt { axis, angle } => {
@@ -216,6 +222,7 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
                     .map(|g| tilt_angle(g.quaternion, axis, &angle).to_degrees())
                     .collect(),
                 voxel: None,
+                ks_distance: None,
             }
         }
         Orientation::Fisher(law) => {
@@ -241,6 +248,7 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
                     })
                     .collect(),
                 voxel: None,
+                ks_distance: None,
             }
         }
         Orientation::Random => {

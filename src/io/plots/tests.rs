@@ -45,6 +45,8 @@ fn voxel_samples(packed: &[PackedGrain]) -> Vec<VoxelSample> {
             equivalent_diameter: 0.97 * equivalent_diameter(g.semi_axes),
             aspect_ratio: 1.05 * aspect_ratio(g.semi_axes),
             tilt: Some(0.3),
+            shape_ratios: None,
+            spin: None,
         })
         .collect()
 }

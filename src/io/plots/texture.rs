@@ -75,6 +75,8 @@ pub(super) fn texture_panel(m: &TextureMeasure) -> Panel {
         target,
         packed: m.angles.iter().map(|a| a.to_degrees()).collect(),
         voxel: None,
+        // In the title, with its 5 % critical value.
+        ks_distance: None,
     }
 }
 

@@ -4,12 +4,13 @@
 
 use super::{OutputFiles, ReportError};
 use crate::contact::{dot, rotation_column, sphere_diameter};
-use crate::io::plots::{render_statistics_png, VoxelSample};
+use crate::io::plots::{render_run_statistics_png, VoxelSample};
 use crate::io::texture::TextureMeasure;
 use crate::io::voxel::{
     grain_report, voxelise, write_sections_png, write_vti, VoxelGrid, VoxelReport,
 };
 use crate::packing::PackedGrain;
+use crate::run::PhaseStatistics;
 use crate::scene::{tilt_angle_of, Domain, Orientation, OutputSpec, Phase, RveFill};
 use serde::Serialize;
 use std::io;
@@ -86,10 +87,12 @@ impl RveSummary {
 /// `beside_rve` with the voxel grid once `rve.vti` is written (for the files written on
 /// its cells: DAMASK's and Abaqus'); returns the RVE's totals when one was written.
 /// With `crystals` (when crystal orientations are asked for), `rve.vti` has each
-/// cell's orientation and the statistics figure each phase's texture.
+/// cell's orientation and the statistics figure each phase's texture;
+/// `statistics` (the run's, one per phase) gives the figure's KS distances.
 pub fn write_derived(
     output: &OutputSpec,
     phases: &[Phase],
+    statistics: Option<&[PhaseStatistics]>,
     domain: &Domain,
     grains: &[PackedGrain],
     crystals: Option<Crystals>,
@@ -122,7 +125,7 @@ pub fn write_derived(
     if output.statistics_png {
         files.write(STATISTICS_PNG, |w| {
             let textures = crystals.map_or(&[][..], |c| c.measures);
-            render_statistics_png(w, phases, grains, samples.as_deref(), textures)
+            render_run_statistics_png(w, phases, grains, samples.as_deref(), statistics, textures)
                 .map_err(io::Error::other)
         })?;
     }
@@ -159,7 +162,9 @@ fn write_rve_grains(out: &mut dyn io::Write, report: &VoxelReport) -> io::Result
 
 /// The voxel grains measured like the packed ones: the equivalent diameter of the
 /// voxel volume, and the aspect ratio `a1/a2` and angle from the voxel grain's
-/// moment ellipsoid, whose axis closest to the packed grain's first axis plays `a1`.
+/// moment ellipsoid, whose axis closest to the packed grain's first axis plays `a1`
+/// (`a2` the geometric mean of the other two, the equatorial radius of a spheroid);
+/// the triaxial ratios `b/a`, `c/a`, `c/b` from its sorted semi-axes.
 fn voxel_samples(
     report: &VoxelReport,
     grains: &[PackedGrain],
@@ -179,10 +184,9 @@ fn voxel_samples(
                     c(a).total_cmp(&c(b))
                 })
                 .unwrap_or(0);
-            let others: Vec<f64> = (0..3)
-                .filter(|&m| m != k)
-                .map(|m| shape.semi_axes[m])
-                .collect();
+            // The other two, larger first (the moments are sorted largest first).
+            let rest: Vec<usize> = (0..3).filter(|&m| m != k).collect();
+            let others: Vec<f64> = rest.iter().map(|&m| shape.semi_axes[m]).collect();
             let a1 = shape.semi_axes[k];
             let a2 = (others[0] * others[1]).sqrt();
             let axis = shape.axes[k];
@@ -196,7 +200,23 @@ fn voxel_samples(
                     axis: tilt_axis,
                     angle,
                 } => Some(tilt_angle_of(axis, *tilt_axis, angle)),
+                // The panel's angle: to the law's mean direction, in [0, π].
+                Orientation::Fisher(law) => Some(law.axis_angle(axis)),
                 _ => Some(axis[2].abs().min(1.0).acos()),
+            };
+            let spin = match &phases.get(g.phase)?.orientation {
+                Orientation::Fisher(law) => {
+                    // The middle axis, signed like the packed second axis.
+                    let b = shape.axes[rest[0]];
+                    let packed_b = rotation_column(g.quaternion, 1);
+                    let b = if dot(&b, &packed_b) < 0.0 {
+                        b.map(|x| -x)
+                    } else {
+                        b
+                    };
+                    Some(law.spin_angle(axis, b))
+                }
+                _ => None,
             };
             Some(VoxelSample {
                 phase: g.phase,
@@ -204,7 +224,69 @@ fn voxel_samples(
                 equivalent_diameter: sphere_diameter(v.voxel_volume),
                 aspect_ratio: a1 / a2,
                 tilt,
+                shape_ratios: Some([shape.b_over_a, shape.c_over_a, shape.c_over_b]),
+                spin,
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// A few well-resolved triaxial `fisher` grains, far apart: their voxel shapes
+    /// give back their ratios and their spin.
+    #[test]
+    fn voxel_samples_of_triaxial_fisher_grains_give_their_ratios_and_spin() {
+        let scene = Scene::from_str(
+            r#"
+            seed = 3
+            grains = 4
+            [box]
+            size = [40, 40, 40]
+            [[phase]]
+            size = { distribution = "constant", value = 12 }
+            b_over_a = { distribution = "constant", value = 0.6 }
+            c_over_a = { distribution = "constant", value = 0.3 }
+            orientation = { kind = "fisher", direction = "x", kappa = 5, spin_reference = "y", spin_kappa = 1 }
+            "#,
+            "test.toml",
+        )
+        .unwrap();
+        let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+        // a1 = 0.8 · 6 · (0.6 · 0.3)^(−1/3) ≈ 8.5: grains at most 17 long, their
+        // centres (and periodic images) at least 20·√2 ≈ 28 apart.
+        let centres = [
+            [10.0, 10.0, 10.0],
+            [30.0, 30.0, 10.0],
+            [10.0, 30.0, 30.0],
+            [30.0, 10.0, 30.0],
+        ];
+        let grains: Vec<PackedGrain> = specs
+            .iter()
+            .zip(centres)
+            .enumerate()
+            .map(|(i, (s, c))| PackedGrain::of_spec(i as u32, s, 0.8, c, s.quaternion))
+            .collect();
+        let grid = voxelise(&grains, &scene.domain, [100; 3], RveFill::Matrix, 1).unwrap();
+        let report = grain_report(&grid, &grains).unwrap();
+        let samples = voxel_samples(&report, &grains, &scene.phases);
+        assert_eq!(samples.len(), 4);
+        let Orientation::Fisher(law) = scene.phases[0].orientation else {
+            panic!("fisher")
+        };
+        for (s, g) in samples.iter().zip(&grains) {
+            // c ≈ 2.5 units = 6 voxels across its semi-axis: ratios within a few per cent.
+            let [ba, ca, _] = s.shape_ratios.unwrap();
+            assert!((ba / 0.6 - 1.0).abs() < 0.06, "{s:?}");
+            assert!((ca / 0.3 - 1.0).abs() < 0.08, "{s:?}");
+            // The moment axes are those of the ellipsoid to a degree or two.
+            let e = rotation_column(g.quaternion, 0);
+            let packed = law.spin_angle(e, rotation_column(g.quaternion, 1));
+            let d = (s.spin.unwrap() - packed).abs().to_degrees();
+            assert!(d < 3.0, "spin {:?} vs {packed}: {d}°", s.spin);
+        }
+    }
 }

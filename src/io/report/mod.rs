@@ -189,6 +189,7 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     let rve = write_derived(
         output,
         &scene.phases,
+        Some(&result.statistics.phases),
         domain,
         grains,
         shown,

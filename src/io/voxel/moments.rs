@@ -24,6 +24,12 @@ pub struct VoxelShape {
     pub axes: [[f64; 3]; 3],
     /// `semi_axes[0] / semi_axes[2]`.
     pub aspect_ratio: f64,
+    /// `b/a = semi_axes[1] / semi_axes[0]` (DREAM.3D's first shape ratio).
+    pub b_over_a: f64,
+    /// `c/a = semi_axes[2] / semi_axes[0]`.
+    pub c_over_a: f64,
+    /// `c/b = semi_axes[2] / semi_axes[1]`.
+    pub c_over_b: f64,
     /// Angle in degrees (0–90) between the major axes of the voxel grain and of the
     /// ellipsoid; meaningless for a grain with two equal largest semi-axes.
     pub major_axis_angle_deg: f64,
@@ -114,6 +120,9 @@ impl Moments {
             semi_axes,
             axes,
             aspect_ratio: semi_axes[0] / semi_axes[2],
+            b_over_a: semi_axes[1] / semi_axes[0],
+            c_over_a: semi_axes[2] / semi_axes[0],
+            c_over_b: semi_axes[2] / semi_axes[1],
             major_axis_angle_deg: cos.min(1.0).acos().to_degrees(),
             centroid_offset: offset.sqrt(),
         })

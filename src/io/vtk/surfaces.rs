@@ -83,7 +83,17 @@ struct CellData {
     volume: Vec<f64>,
     equivalent_diameter: Vec<f64>,
     aspect_ratio: Vec<f64>,
+    b_over_a: Vec<f64>,
+    c_over_a: Vec<f64>,
     periodic_image: Vec<i32>,
+}
+
+/// DREAM.3D's shape ratios `[b/a, c/a]` of semi-axes sorted `a ≥ b ≥ c`, whatever
+/// their order in the grain (an oblate spheroid's `a1` is its shortest).
+fn shape_ratios(semi_axes: [f64; 3]) -> [f64; 2] {
+    let mut s = semi_axes;
+    s.sort_by(|a, b| b.total_cmp(a));
+    [s[1] / s[0], s[2] / s[0]]
 }
 
 /// Writes `grains.vtu` (VTK XML UnstructuredGrid, binary base64, float64 points):
@@ -91,7 +101,9 @@ struct CellData {
 /// [`periodic_shifts`] copies, as `20·4^resolution` triangles each. Cell data, per
 /// triangle: `grain_id` and `phase` (the CSV's), `volume` `4π/3·a1·a2·a3` and
 /// `equivalent_diameter` `2·(a1·a2·a3)^{1/3}` of the exact ellipsoid, `aspect_ratio`
-/// `a1/a2` (both as in the summary, [`crate::run::Statistics`]), and
+/// `a1/a2` (first semi-axis over second: both as in the summary,
+/// [`crate::run::Statistics`]), `b_over_a` and `c_over_a` (the semi-axes sorted
+/// `a ≥ b ≥ c`, DREAM.3D's ratios, which describe triaxial grains), and
 /// `periodic_image` (0 for the grain, 1 for a copy); with `crystals` (`crystals[i]`
 /// the crystal orientation of `grains[i]`), also `crystal_quaternion` (4 components,
 /// scalar first) and `euler_angles` (Bunge, degrees).
@@ -125,6 +137,9 @@ pub fn write_grains_vtu(
                 .extend(std::iter::repeat_n(equivalent_diameter(g.semi_axes), n));
             data.aspect_ratio
                 .extend(std::iter::repeat_n(aspect_ratio(g.semi_axes), n));
+            let [ba, ca] = shape_ratios(g.semi_axes);
+            data.b_over_a.extend(std::iter::repeat_n(ba, n));
+            data.c_over_a.extend(std::iter::repeat_n(ca, n));
             data.periodic_image
                 .extend(std::iter::repeat_n(i32::from(k > 0), n));
             if let Some(o) = crystals.and_then(|c| c.get(i)) {
@@ -154,6 +169,8 @@ pub fn write_grains_vtu(
                 Attribute::generic("volume", 1).with_data(data.volume),
                 Attribute::generic("equivalent_diameter", 1).with_data(data.equivalent_diameter),
                 Attribute::generic("aspect_ratio", 1).with_data(data.aspect_ratio),
+                Attribute::generic("b_over_a", 1).with_data(data.b_over_a),
+                Attribute::generic("c_over_a", 1).with_data(data.c_over_a),
                 Attribute::generic("periodic_image", 1).with_data(data.periodic_image),
             ]
             .into_iter()

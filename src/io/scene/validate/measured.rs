@@ -3,16 +3,16 @@
 //! The table has a header row. Columns, in the box's length unit: `d` (equivalent
 //! diameter) or `a1`, `a2`, `a3` (semi-axes); optionally `qw`, `qx`, `qy`, `qz` (unit
 //! quaternion, semi-axis k along column k of its rotation) and `phase` (an index or a
-//! name, selected by the `phase` key). Other columns (`id`, `x`, `y`, `z`, ...) are
-//! ignored, so a `grains.csv` written by `pack` reads back as it is.
+//! name, selected by the `phase` key); optionally the crystal orientation, `o0..o3`
+//! (unit quaternion, scalar first) or else `phi1`, `Phi`, `phi2` (Bunge Euler angles,
+//! degrees). Other columns (`id`, `x`, `y`, `z`, ...) are ignored, so a `grains.csv`
+//! written by `pack` reads back as it is, crystal orientations included.
 
 use crate::contact::QUATERNION_NORM_TOL;
 use crate::io::scene::error::{DataFileError, SceneError, Source};
-use crate::io::scene::raw::{RawMeasured, RawScene};
+use crate::io::scene::raw::RawMeasured;
 use crate::laws::{Distribution, EmpiricalLaw};
-use crate::scene::{
-    Domain, GrainCount, Measured, MeasuredGrain, MeasuredMode, Phase, MAX_TARGET_FRACTION,
-};
+use crate::scene::{euler_to_quaternion, Measured, MeasuredGrain, MeasuredMode};
 use std::path::Path;
 use toml::Spanned;
 
@@ -95,86 +95,6 @@ pub(super) fn measured(
     ))
 }
 
-/// The count and box of a scene whose phases all take exactly their measured grains:
-/// the shares become the tables' volumes; `grains`, if given, must equal the number of
-/// rows; `target_fraction`, if given, scales the box (its proportions kept) so that the
-/// grains fill that fraction; otherwise the box is as given and must hold them.
-pub(super) fn exact_scene(
-    src: &Source,
-    raw: &RawScene,
-    domain: Domain,
-    phases: &mut [Phase],
-) -> Result<(GrainCount, Domain), SceneError> {
-    let tables: Vec<&Measured> = phases.iter().filter_map(|p| p.measured.as_ref()).collect();
-    let count: usize = tables.iter().map(|m| m.grains.len()).sum();
-    let volumes: Vec<f64> = tables.iter().map(|m| m.volume()).collect();
-    let volume: f64 = volumes.iter().sum();
-    for (p, v) in phases.iter_mut().zip(&volumes) {
-        p.share = v / volume;
-    }
-    let fits = |domain: &Domain, at: std::ops::Range<usize>, key: &str| {
-        let longest = phases.iter().map(Phase::max_length).fold(0.0, f64::max);
-        if longest >= domain.min_side() {
-            return Err(src.invalid(
-                key,
-                at,
-                format!(
-                    "the longest measured grain ({longest} end to end) does not fit in the                      box, whose shortest side is {}",
-                    domain.min_side()
-                ),
-            ));
-        }
-        Ok(())
-    };
-    let fraction_of = |domain: &Domain| volume / domain.volume();
-    match (&raw.grains, &raw.target_fraction) {
-        (Some(n), _) if *n.get_ref() != count as u64 => Err(src.invalid_at(
-            "grains",
-            n,
-            format!("the measured tables (mode = \"exact\") hold {count} grains"),
-        )),
-        (Some(_), Some(f)) => Err(src.invalid_at(
-            "target_fraction",
-            f,
-            "give either grains or target_fraction, not both",
-        )),
-        (_, Some(f)) => {
-            let phi = *f.get_ref();
-            if !(phi > 0.0 && phi <= MAX_TARGET_FRACTION) {
-                return Err(src.invalid_at(
-                    "target_fraction",
-                    f,
-                    format!("must lie in (0, {MAX_TARGET_FRACTION}]"),
-                ));
-            }
-            let scale = (volume / (phi * domain.volume())).cbrt();
-            let scaled = Domain {
-                size: domain.size.map(|l| l * scale),
-                ..domain
-            };
-            fits(&scaled, f.span(), "target_fraction")?;
-            Ok((GrainCount::Exactly(count), scaled))
-        }
-        (_, None) => {
-            let at = raw.domain.get_ref().size.span();
-            fits(&domain, at.clone(), "box.size")?;
-            let phi = fraction_of(&domain);
-            if phi > MAX_TARGET_FRACTION {
-                return Err(src.invalid(
-                    "box.size",
-                    at,
-                    format!(
-                        "the measured grains fill {phi:.3} of this box, beyond the densest \
-                         packing of ellipsoids ({MAX_TARGET_FRACTION}); enlarge the box or \
-                         give target_fraction to size it"
-                    ),
-                ));
-            }
-            Ok((GrainCount::Exactly(count), domain))
-        }
-    }
-}
-
 /// How far from 1 the norm of a unit quaternion read from 17 digits can be: its four
 /// components each carry a relative rounding of `ε/2` (17 digits read back exactly),
 /// and the sum of squares and the root add a few more `ε/2`; `8 ε` bounds them.
@@ -235,6 +155,13 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
         ]),
         (false, true) => return Err(bad_header("qw, qx, qy and qz go together")),
         (false, false) => None,
+    };
+    // Crystal orientations: o0..o3 (a unit quaternion, as pack writes them), else
+    // phi1, Phi, phi2 (Bunge Euler angles in degrees).
+    let crystal_quat = columns(&header, &["o0", "o1", "o2", "o3"]).map_err(|e| bad_header(&e))?;
+    let euler = match crystal_quat {
+        Some(_) => None,
+        None => columns(&header, &["phi1", "Phi", "phi2"]).map_err(|e| bad_header(&e))?,
     };
     let phase_col = find("phase");
     if select.is_some() && phase_col.is_none() {
@@ -311,7 +238,34 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
                 }
             }
         };
-        grains.push(match axes {
+        let unit = |q: [f64; 4], name: &str| -> Result<[f64; 4], Bad> {
+            let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if !((norm - 1.0).abs() <= QUATERNION_NORM_TOL) {
+                return Err((
+                    line,
+                    name.into(),
+                    format!("[{}, {}, {}, {}]", q[0], q[1], q[2], q[3]),
+                    format!("must be a unit quaternion (norm {norm}, tolerance {QUATERNION_NORM_TOL:e})"),
+                ));
+            }
+            // Within rounding of unit norm, kept as written (an exact round trip).
+            Ok(if (norm - 1.0).abs() <= UNIT_ROUNDING {
+                q
+            } else {
+                q.map(|v| v / norm)
+            })
+        };
+        let crystal = match (crystal_quat, euler) {
+            (Some(c), _) => Some(unit(
+                [number(c[0])?, number(c[1])?, number(c[2])?, number(c[3])?],
+                "o0",
+            )?),
+            (None, Some(c)) => Some(euler_to_quaternion(
+                [number(c[0])?, number(c[1])?, number(c[2])?].map(f64::to_radians),
+            )),
+            (None, None) => None,
+        };
+        let mut grain = match axes {
             Some(cols) => MeasuredGrain::with_semi_axes(
                 [positive(cols[0])?, positive(cols[1])?, positive(cols[2])?],
                 q,
@@ -320,10 +274,29 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
                 diameter: positive(d.expect("d or semi-axes"))?,
                 semi_axes: None,
                 quaternion: q,
+                crystal: None,
             },
-        });
+        };
+        grain.crystal = crystal;
+        grains.push(grain);
     }
     Ok(grains)
+}
+
+/// The positions of the columns `names` in `header`: all of them, or `None` if none
+/// is there; an error if only some are.
+fn columns<const N: usize>(
+    header: &[String],
+    names: &[&str; N],
+) -> Result<Option<[usize; N]>, String> {
+    let found = names.map(|n| header.iter().position(|h| h == n));
+    if found.iter().all(Option::is_some) {
+        Ok(Some(found.map(|c| c.expect("all found"))))
+    } else if found.iter().any(Option::is_some) {
+        Err(format!("{} go together", names.join(", ")))
+    } else {
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

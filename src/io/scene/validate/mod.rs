@@ -5,6 +5,7 @@ mod axis;
 mod fisher;
 mod grain;
 mod measured;
+mod mixed;
 mod output;
 mod solver;
 mod table;
@@ -15,8 +16,8 @@ use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
-    mean_grain_volume, Boundary, Domain, GrainCount, MeasuredMode, Orientation, PackingParams,
-    Phase, PhaseTexture, Rotation, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
+    mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase,
+    PhaseTexture, Rotation, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -37,8 +38,16 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
     }
     let mut names = HashSet::new();
     let mut phases = Vec::with_capacity(raw.phase.len());
+    let has_exact = raw.phase.iter().any(|p| {
+        let mode = p
+            .get_ref()
+            .measured
+            .as_ref()
+            .and_then(|m| m.get_ref().mode.clone());
+        mode.is_some_and(|m| m.get_ref() == "exact")
+    });
     for (i, p) in raw.phase.iter().enumerate() {
-        let phase = phase(&src, i, p, &domain)?;
+        let phase = phase(&src, i, p, &domain, has_exact)?;
         if !names.insert(phase.name.clone()) {
             let at = p.get_ref().name.as_ref().map_or(p.span(), |n| n.span());
             return Err(src.invalid(format!("phase[{i}].name"), at, "two phases have this name"));
@@ -50,21 +59,13 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         p.share /= total;
     }
 
-    // Exact measured tables: all phases or none, and they fix the count (and the box).
-    let exact: Vec<bool> = phases
-        .iter()
-        .map(|p| matches!(&p.measured, Some(m) if m.mode == MeasuredMode::Exact))
-        .collect();
-    let (count, domain) = if exact.iter().any(|&e| e) {
-        if let Some(i) = exact.iter().position(|&e| !e) {
-            return Err(src.invalid(
-                format!("phase[{i}]"),
-                raw.phase[i].span(),
-                "when a phase takes exactly its measured grains (mode = \"exact\"), every \
-                 phase must: the grains are then the tables' rows",
-            ));
-        }
-        measured::exact_scene(&src, &raw, domain, &mut phases)?
+    // Exact measured tables fix the count (and the box); mixed with drawn phases, the
+    // grain volume and the box (see mixed.rs).
+    let exact: Vec<bool> = phases.iter().map(mixed::is_exact).collect();
+    let (count, domain) = if !exact.is_empty() && exact.iter().all(|&e| e) {
+        mixed::exact_scene(&src, &raw, domain, &mut phases)?
+    } else if exact.iter().any(|&e| e) {
+        mixed::mixed_scene(&src, &raw, domain, &mut phases)?
     } else {
         (count(&src, &raw, &domain, &phases)?, domain)
     };
@@ -110,6 +111,7 @@ fn phase(
     i: usize,
     raw: &Spanned<RawPhase>,
     domain: &Domain,
+    scene_has_exact: bool,
 ) -> Result<Phase, SceneError> {
     let key = format!("phase[{i}]");
     let p = raw.get_ref();
@@ -165,6 +167,11 @@ fn phase(
                 m.has_orientations(),
                 p.orientation.as_ref().map(Spanned::span),
             ),
+            (
+                "texture",
+                m.has_crystals(),
+                p.texture.as_ref().map(Spanned::span),
+            ),
         ];
         for (name, from_table, span) in given {
             if let (true, Some(span)) = (from_table, span) {
@@ -211,9 +218,9 @@ fn phase(
     };
 
     let (longest, side) = (phase.max_length(), domain.min_side());
-    // An exact table's box may still be scaled by target_fraction: checked after that.
-    let exact = matches!(&phase.measured, Some(m) if m.mode == MeasuredMode::Exact);
-    if longest >= side && !exact {
+    // A box of exact tables (all, or mixed with drawn phases) may still be scaled by
+    // target_fraction: checked after that, for every phase (measured::sized_box).
+    if longest >= side && !scene_has_exact {
         // Blame the size's upper bound; the message names the aspect ratios too.
         let param = match size {
             Distribution::Constant { .. } => "value",
@@ -338,7 +345,7 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
                 return Err(src.invalid_at(
                     "packing.rotation",
                     v,
-                    "must be false (orientations as drawn), true (grains turn freely) or \"axis\" (grains of tilt phases turn about the tilt axis)",
+                    "must be false (orientations as drawn), true (grains turn freely) or \"axis\" (grains of tilt phases turn about the tilt axis, of fisher phases about their first axis)",
                 ))
             }
         };
