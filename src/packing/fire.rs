@@ -219,8 +219,8 @@ impl Fire {
         scaled.clear();
         scaled.extend((forces.force.iter().zip(&root_mass)).map(|(f, m)| f.map(|x| x / m)));
         let mut power = 0.0;
-        for i in 0..n {
-            power += dot(&scaled[i], &self.velocity[i]);
+        for (i, f) in scaled.iter().enumerate() {
+            power += dot(f, &self.velocity[i]);
             if rotate {
                 power += dot(&torque(i), &self.spin[i]);
             }
@@ -248,8 +248,7 @@ impl Fire {
         let dt = self.dt;
         // v += dt F, then mix toward the force direction over all degrees of freedom.
         let (mut vv, mut ff) = (0.0, 0.0);
-        for i in 0..n {
-            let f = scaled[i];
+        for (i, &f) in scaled.iter().enumerate() {
             axpy(&mut self.velocity[i], dt, &f);
             vv += dot(&self.velocity[i], &self.velocity[i]);
             ff += dot(&f, &f);
