@@ -64,6 +64,10 @@ pub(crate) struct Fire {
     pub restore: f64,
     /// Each grain's turn from its drawn orientation, while restoring.
     turns: Vec<[f64; 3]>,
+    /// The square root of each grain's mass (see [`masses`]).
+    root_mass: Vec<f64>,
+    /// Each grain's force over its root mass.
+    scaled: Vec<[f64; 3]>,
 }
 
 impl Fire {
@@ -80,6 +84,8 @@ impl Fire {
             positive: 0,
             restore: 0.0,
             turns: Vec::new(),
+            root_mass: Vec::new(),
+            scaled: Vec::new(),
         }
     }
 
@@ -114,6 +120,7 @@ impl Fire {
             / n as f64;
         let margin_energy = 4.0 * (big_s - s).powi(2) * mean_rho2;
         let mut jam = JamTest::new(p.window, p.plateau_slope, margin_energy);
+        masses(state, &mut self.root_mass);
         for _ in 0..budget {
             if run.stop.load(Ordering::Relaxed) {
                 return Ok(Outcome::Interrupted);
@@ -197,7 +204,8 @@ impl Fire {
                 if kappa > 0.0 {
                     axpy(&mut t, -kappa * l * l, &self.turns[i]);
                 }
-                state.allowed_torque(i, t, mode).map(|x| x / l)
+                let m = self.root_mass[i];
+                state.allowed_torque(i, t, mode).map(|x| x / (l * m))
             }));
         }
         let (levers, torques) = (
@@ -205,9 +213,14 @@ impl Fire {
             std::mem::take(&mut self.torques),
         );
         let (lever, torque) = (|i: usize| levers[i], |i: usize| torques[i]);
+        // FIRE in mass-weighted coordinates √m x: velocities are √m v, forces F/√m.
+        let root_mass = std::mem::take(&mut self.root_mass);
+        let mut scaled = std::mem::take(&mut self.scaled);
+        scaled.clear();
+        scaled.extend((forces.force.iter().zip(&root_mass)).map(|(f, m)| f.map(|x| x / m)));
         let mut power = 0.0;
-        for i in 0..n {
-            power += dot(&forces.force[i], &self.velocity[i]);
+        for (i, f) in scaled.iter().enumerate() {
+            power += dot(f, &self.velocity[i]);
             if rotate {
                 power += dot(&torque(i), &self.spin[i]);
             }
@@ -224,9 +237,9 @@ impl Fire {
             self.alpha = p.alpha_start;
             // FIRE 2.0: step back half a step, and stop.
             let back = 0.5 * self.dt;
-            for (c, v) in state.centres.iter_mut().zip(&self.velocity) {
+            for ((c, v), m) in state.centres.iter_mut().zip(&self.velocity).zip(&root_mass) {
                 for k in 0..3 {
-                    c[k] -= back * v[k];
+                    c[k] -= back * v[k] / m;
                 }
             }
             self.velocity.iter_mut().for_each(|v| *v = [0.0; 3]);
@@ -235,8 +248,7 @@ impl Fire {
         let dt = self.dt;
         // v += dt F, then mix toward the force direction over all degrees of freedom.
         let (mut vv, mut ff) = (0.0, 0.0);
-        for i in 0..n {
-            let f = forces.force[i];
+        for (i, &f) in scaled.iter().enumerate() {
             axpy(&mut self.velocity[i], dt, &f);
             vv += dot(&self.velocity[i], &self.velocity[i]);
             ff += dot(&f, &f);
@@ -256,20 +268,21 @@ impl Fire {
         let mut turned = std::mem::take(&mut self.turned);
         turned.clear();
         for i in 0..n {
-            let limit = p.max_move * big_s * state.shapes[i].inscribed_radius() / dt;
-            let f = forces.force[i];
+            let m = root_mass[i];
+            let limit = m * p.max_move * big_s * state.shapes[i].inscribed_radius() / dt;
+            let f = scaled[i];
             let v = &mut self.velocity[i];
             *v = v.map(|x| keep * x);
             axpy(v, mix, &f);
             clamp_norm(v, limit);
-            axpy(&mut state.centres[i], dt, v);
+            axpy(&mut state.centres[i], dt / m, v);
             if rotate {
                 let l = lever(i);
                 let w = &mut self.spin[i];
                 *w = w.map(|x| keep * x);
                 axpy(w, mix, &torque(i));
                 clamp_norm(w, limit);
-                let angle = w.map(|x| dt * x / l);
+                let angle = w.map(|x| dt * x / (l * m));
                 if angle.iter().any(|&a| a != 0.0) {
                     let q = rotate_by(state.quaternions[i], angle);
                     if state.within_turn(i, q, max_turn) {
@@ -283,8 +296,27 @@ impl Fire {
         }
         let done = state.set_orientations(&turned);
         (self.levers, self.torques, self.turned) = (levers, torques, turned);
+        (self.root_mass, self.scaled) = (root_mass, scaled);
         done
     }
+}
+
+/// Each grain's root mass `√m`: `m = max(1, (ρ/ρ̃)²)`, ρ its smallest semi-axis and ρ̃
+/// the median over the grains. A grain's stiffness is about 2 per contact, and a grain
+/// much larger than its neighbours has contacts in proportion to its surface, `(ρ/ρ̃)²`
+/// of a typical grain's: with masses in proportion, every grain's own vibration has
+/// about the same period, and FIRE's step is no longer held down by the large grains
+/// of a mixture. Equal grains keep unit masses.
+fn masses(state: &State, root_mass: &mut Vec<f64>) {
+    let mut rho: Vec<f64> = state.shapes.iter().map(|e| e.inscribed_radius()).collect();
+    let median = if rho.is_empty() {
+        1.0
+    } else {
+        let k = rho.len() / 2;
+        *rho.select_nth_unstable_by(k, f64::total_cmp).1
+    };
+    root_mass.clear();
+    root_mass.extend((state.shapes.iter()).map(|e| (e.inscribed_radius() / median).max(1.0)));
 }
 
 /// `y += a x`.

@@ -226,3 +226,25 @@ size = { distribution = "constant", value = 2.0 }
     assert!(p.verification.is_clean(), "{:?}", p.verification);
     assert!((p.fraction - 0.63).abs() < 1e-3, "{}", p.fraction);
 }
+
+/// Recompression cycles (`effort` ≥ 2) start where the search at effort 1 ended and
+/// keep the densest clean state: never less dense, still clean, still jammed below
+/// the target, and the frozen orientations untouched.
+#[test]
+fn recompression_cycles_never_lose_density_and_stay_clean() {
+    let (one, _) = pack_scene(DENSE_SPHEROIDS, Rotation::None);
+    let (three, specs) = pack_with(DENSE_SPHEROIDS, |p| p.effort = 3.0);
+    assert_eq!(three.stop, StopReason::Jammed);
+    assert!(three.verification.is_clean(), "{:?}", three.verification);
+    assert!(three.scale < 1.0);
+    assert!(
+        three.fraction >= one.fraction,
+        "{} < {}",
+        three.fraction,
+        one.fraction
+    );
+    assert!(three.counters.steps > one.counters.steps);
+    for (g, s) in three.grains.iter().zip(&specs) {
+        assert_eq!(g.quaternion, s.quaternion);
+    }
+}

@@ -20,9 +20,11 @@ pub struct PackingParams {
     /// Whether grains that may turn are turned back toward their drawn orientations,
     /// as far as their neighbours let them, once packed at the target. Default true.
     pub restore: bool,
-    /// How much work the loop may spend per trial scale when the target cannot be
-    /// reached: each relaxation below the target may take `effort` times the default
-    /// budget of steps before it counts as jammed. Higher is denser and slower.
+    /// How much work the loop may spend when the target cannot be reached: below 1,
+    /// each relaxation below the target may take `effort` times the default budget of
+    /// steps before it counts as jammed; from 2 on, the jammed packing is compressed
+    /// again and its jamming point searched anew `⌊effort⌋ − 1` times, the densest
+    /// kept (about `effort` times the time). Higher is denser and slower.
     /// In `[0.1, 100]`; default 1.
     pub effort: f64,
 }
