@@ -358,6 +358,16 @@ fn measured_table_keeps_the_crystal_orientations_of_a_packed_grains_csv() {
         String::from_utf8_lossy(&run.stderr)
     );
     assert_eq!(csv_columns(&dir.join("exact/grains.csv"), &crystal), first);
+    // Its texture is measured against the table's own crystals (not the default random
+    // law): the same orientations, so the KS distance is 0.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("exact/summary.json")).unwrap())
+            .unwrap();
+    let texture = &summary["textures"][0];
+    assert_eq!(texture["kind"], "measured");
+    assert_eq!(texture["file_rows"].as_u64(), Some(first.len() as u64));
+    let ks = texture["ks_distance"].as_f64().unwrap();
+    assert!(ks < 1e-12, "{ks}");
     // Drawn with replacement: every grain carries its row's shape and crystal together.
     std::fs::write(
         dir.join("draw.toml"),

@@ -235,10 +235,12 @@ fn a_file_texture_gives_its_rows_and_the_solver_files_are_written() {
     );
     let mean = texture["target_mean_deg"].as_f64().unwrap();
     assert!((mean - 60.0).abs() < 1e-12, "{mean}");
-    // statistics.png has the texture column: four panels of 600 pixels across.
+    // statistics.png has the texture panel on a line below the phase's three: three
+    // panels of 600 pixels across, a 60-pixel title and two lines of 470.
     let png = std::fs::read(dir.join("out/statistics.png")).unwrap();
     let width = u32::from_be_bytes(png[16..20].try_into().unwrap());
-    assert_eq!(width, 4 * 600);
+    let height = u32::from_be_bytes(png[20..24].try_into().unwrap());
+    assert_eq!((width, height), (3 * 600, 60 + 2 * 470));
 }
 
 #[test]

@@ -236,7 +236,23 @@ pub fn measure_textures(
                         q
                     }
                 });
+            // A measured table's own crystals are the target: their rotation angles,
+            // each row weighted alike (a texture key beside such a table is refused).
+            let table = phase.measured.as_ref().filter(|m| m.has_crystals());
             let (measure, angles, law): (_, Vec<f64>, _) = match &t.texture {
+                _ if table.is_some() => {
+                    let rows: Vec<[f64; 4]> = table
+                        .into_iter()
+                        .flat_map(|m| m.grains.iter())
+                        .filter_map(|g| g.crystal)
+                        .collect();
+                    let weights = vec![1.0; rows.len()];
+                    (
+                        "rotation angle",
+                        drawn.map(rotation_angle).collect(),
+                        AngleLaw::of_file(&rows, &weights),
+                    )
+                }
                 Texture::Random => (
                     "rotation angle",
                     drawn.map(rotation_angle).collect(),

@@ -161,7 +161,7 @@ fn unwritable_path_is_a_write_error_naming_it() {
 }
 
 #[test]
-fn a_texture_adds_a_fourth_column_with_its_target_curve() {
+fn a_texture_adds_a_line_below_its_phase_with_its_target_curve() {
     use crate::io::texture::{AngleLaw, TextureMeasure};
     let (phases, packed) = grains();
     let mut plain = Vec::new();
@@ -177,13 +177,12 @@ fn a_texture_adds_a_fourth_column_with_its_target_curve() {
     render_statistics_png(&mut textured, &phases, &packed, None, &[measure]).unwrap();
     let (w0, h0, p0) = decode(&plain);
     let (w1, h1, p1) = decode(&textured);
-    assert_eq!((w0, w1, h0, h1), (1800, 2400, h1, 60 + 2 * 470));
-    // One more target curve drawn, in the new column only.
+    assert_eq!((w0, w1, h0, h1), (1800, 1800, 60 + 2 * 470, 60 + 3 * 470));
+    // One more target curve drawn, on the new line only (the last phase's extra line).
     assert!(count(&p1, draw::TARGET) > count(&p0, draw::TARGET) + 300);
-    let right = p1
-        .chunks_exact(w1 as usize)
-        .flat_map(|row| &row[1800..])
+    let below = p1[(w1 * h0) as usize..]
+        .iter()
         .filter(|p| **p == [draw::TARGET.0, draw::TARGET.1, draw::TARGET.2])
         .count();
-    assert!(right > 300, "{right}");
+    assert!(below > 300, "{below}");
 }

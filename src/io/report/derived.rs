@@ -36,6 +36,19 @@ pub struct Crystals<'a> {
     pub measures: &'a [TextureMeasure],
 }
 
+/// What a run packed, for the files derived from it.
+#[derive(Debug, Clone, Copy)]
+pub struct Packed<'a> {
+    /// The scene's phases.
+    pub phases: &'a [Phase],
+    /// The box.
+    pub domain: &'a Domain,
+    /// The packed grains, in id order.
+    pub grains: &'a [PackedGrain],
+    /// The run's statistics, one per phase (the figure's KS distances), when known.
+    pub statistics: Option<&'a [PhaseStatistics]>,
+}
+
 /// The RVE in `summary.json`: its grid, and how well the voxel grains render the
 /// ellipsoids (per grain in `rve_grains.csv`).
 #[derive(Debug, Clone, Serialize)]
@@ -91,14 +104,17 @@ impl RveSummary {
 /// `statistics` (the run's, one per phase) gives the figure's KS distances.
 pub fn write_derived(
     output: &OutputSpec,
-    phases: &[Phase],
-    statistics: Option<&[PhaseStatistics]>,
-    domain: &Domain,
-    grains: &[PackedGrain],
+    packed: Packed,
     crystals: Option<Crystals>,
     files: &mut OutputFiles,
     beside_rve: impl FnOnce(&VoxelGrid, &mut OutputFiles) -> Result<(), ReportError>,
 ) -> Result<Option<RveSummary>, ReportError> {
+    let Packed {
+        phases,
+        domain,
+        grains,
+        statistics,
+    } = packed;
     let (mut samples, mut summary) = (None, None);
     if let Some(rve) = &output.rve {
         let fill = rve.fill;

@@ -23,7 +23,8 @@ mod summary;
 mod texture;
 
 pub use derived::{
-    write_derived, Crystals, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG, STATISTICS_PNG,
+    write_derived, Crystals, Packed, RveSummary, RVE_GRAINS_CSV, RVE_VTI, SECTIONS_PNG,
+    STATISTICS_PNG,
 };
 
 pub use crate::io::texture::crystal_orientations;
@@ -186,30 +187,27 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         orientations: &crystals,
         measures: &measures,
     });
-    let rve = write_derived(
-        output,
-        &scene.phases,
-        Some(&result.statistics.phases),
+    let packed = Packed {
+        phases: &scene.phases,
         domain,
         grains,
-        shown,
-        &mut files,
-        |grid, files| {
-            if output.damask {
-                files.write(MATERIAL_YAML, |w| {
-                    write_material_yaml(w, scene, grains, &crystals, grid)
-                })?;
-                files.write(LOAD_YAML, |w| write_load_yaml(w, grid))?;
-            }
-            if output.abaqus {
-                files.write(RVE_INP, |w| write_abaqus_deck(w, scene, grid))?;
-                files.write(RVE_UMAT_INP, |w| {
-                    write_umat_sections(w, scene, grains, &crystals, grid)
-                })?;
-            }
-            Ok(())
-        },
-    )?;
+        statistics: Some(&result.statistics.phases),
+    };
+    let rve = write_derived(output, packed, shown, &mut files, |grid, files| {
+        if output.damask {
+            files.write(MATERIAL_YAML, |w| {
+                write_material_yaml(w, scene, grains, &crystals, grid)
+            })?;
+            files.write(LOAD_YAML, |w| write_load_yaml(w, grid))?;
+        }
+        if output.abaqus {
+            files.write(RVE_INP, |w| write_abaqus_deck(w, scene, grid))?;
+            files.write(RVE_UMAT_INP, |w| {
+                write_umat_sections(w, scene, grains, &crystals, grid)
+            })?;
+        }
+        Ok(())
+    })?;
     let seconds = started.elapsed().as_secs_f64();
     let textures = texture_summaries(scene, &measures);
     if output.summary_json {

@@ -11,7 +11,8 @@ use serde::Serialize;
 pub struct TextureSummary {
     /// The phase's name.
     pub phase: String,
-    /// `"random"`, `"fixed"`, `"fibre"` or `"file"`.
+    /// `"random"`, `"fixed"`, `"fibre"` or `"file"`; `"measured"` for a measured table
+    /// with crystal orientations (measured against the table's rows, as a file).
     pub kind: &'static str,
     /// Whether the texture is in the grains' own frames (then measured there).
     pub relative_to_shape: bool,
@@ -34,7 +35,7 @@ pub struct TextureSummary {
     /// The KS distance a sample of this size exceeds with probability 5 %: `1.358/√n`
     /// (conservative for the file's law, which has atoms).
     pub ks_critical_5pct: Option<f64>,
-    /// Rows of the orientation file (file).
+    /// Rows of the orientation file (file) or of the measured table (measured).
     pub file_rows: Option<usize>,
 }
 
@@ -47,10 +48,11 @@ pub fn texture_summaries(scene: &Scene, measures: &[TextureMeasure]) -> Vec<Text
         .map(|(phase, m)| {
             let t = &phase.texture;
             let n = m.angles.len();
+            let table = phase.measured.as_ref().filter(|m| m.has_crystals());
             let deg = |x: f64| x.to_degrees();
             TextureSummary {
                 phase: phase.name.clone(),
-                kind: t.texture.kind(),
+                kind: table.map_or(t.texture.kind(), |_| "measured"),
                 relative_to_shape: t.relative_to_shape,
                 grains: n,
                 measure: Some(m.measure),
@@ -59,8 +61,9 @@ pub fn texture_summaries(scene: &Scene, measures: &[TextureMeasure]) -> Vec<Text
                 max_deg: m.angles.iter().copied().reduce(f64::max).map(deg),
                 ks_distance: m.ks_distance,
                 ks_critical_5pct: m.ks_distance.map(|_| ks_critical_5pct(n)),
-                file_rows: match (&t.texture, &m.law) {
-                    (Texture::File { orientations, .. }, AngleLaw::Atoms { .. }) => {
+                file_rows: match (table, &t.texture, &m.law) {
+                    (Some(table), ..) => Some(table.grains.len()),
+                    (None, Texture::File { orientations, .. }, AngleLaw::Atoms { .. }) => {
                         Some(orientations.len())
                     }
                     _ => None,
