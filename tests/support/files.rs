@@ -35,3 +35,23 @@ pub fn pack_in(dir: &Path, args: &[&str]) -> Output {
         .output()
         .unwrap()
 }
+
+/// `path` (relative to the repository) as an absolute path.
+pub fn repo(path: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join(path)
+        .display()
+        .to_string()
+}
+
+/// Runs `pack` with `args` in `dir` and asserts that it succeeded (its stderr shown
+/// when not).
+pub fn pack_ok(dir: &Path, args: &[&str]) {
+    let run = pack_in(dir, args);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+}

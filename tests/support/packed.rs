@@ -2,7 +2,9 @@
 //! reads `grains.csv` and tests every pair with nalgebra and a golden-section search,
 //! using nothing of grainpack (not its contact module, not its octree).
 
+use super::files::pack_in;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use serde_json::Value;
 use std::path::Path;
 
 /// A grain read back from `grains.csv`.
@@ -184,4 +186,40 @@ pub fn check_overlaps(grains: &[Grain], size: [f64; 3], periodic: bool) -> Check
 /// Extent of a grain along axis k: `√Q_kk`, the support function of the ellipsoid.
 pub fn extent(g: &Grain, k: usize) -> f64 {
     g.q[(k, k)].sqrt()
+}
+
+/// Packs `scene` (a path) into `dir/out`, expecting exit code `code` (3: jammed below
+/// the target, outputs written), and returns the summary, after checking that
+/// the grains are triaxial-ordered and overlap-free by the independent check.
+pub fn pack_and_check(dir: &Path, scene: &str, periodic: bool, code: i32) -> Value {
+    let run = pack_in(dir, &[scene, "--out", "out", "--threads", "2", "--quiet"]);
+    assert_eq!(
+        run.status.code(),
+        Some(code),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap())
+            .unwrap();
+    let grains = read_grains(&dir.join("out/grains.csv"));
+    let size: Vec<f64> = summary["box"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let size = [size[0], size[1], size[2]];
+    let check = check_overlaps(&grains, size, periodic);
+    assert_eq!(check.overlapping_pairs, 0, "min μ² {}", check.min_mu2);
+    assert!(check.candidate_pairs > 0);
+    if !periodic {
+        for g in &grains {
+            for (k, &l) in size.iter().enumerate() {
+                let w = extent(g, k);
+                assert!(g.centre[k] - w >= 0.0 && g.centre[k] + w <= l, "{g:?}");
+            }
+        }
+    }
+    summary
 }

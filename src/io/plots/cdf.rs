@@ -2,7 +2,7 @@
 //! step curve against a tabulated CDF, with the table's points and the packed
 //! fraction passing each tabulated size marked.
 
-use super::draw::{failed, tick_decimals, FONT, PACKED, TARGET};
+use super::draw::{axes, failed, tick_decimals, FONT, PACKED, TARGET, X_MARGIN};
 use super::PlotError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -35,9 +35,6 @@ pub(super) struct CdfPanel {
     pub max_deviation: Option<f64>,
 }
 
-/// Share of the x range added on each side.
-const X_MARGIN: f64 = 0.04;
-
 /// The y axis runs to this, leaving room for the legend above a CDF that ends at 1
 /// (the legend sits lower right, where a CDF is high, so it needs no headroom; this
 /// keeps the top of the curve off the frame).
@@ -63,32 +60,13 @@ pub(super) fn draw_cdf_panel<DB: DrawingBackend>(
     });
     let (lo, hi) = if lo < hi { (lo, hi) } else { (0.0, 1.0) };
     let pad = X_MARGIN * (hi - lo);
-    let x_decimals = tick_decimals(hi - lo + 2.0 * pad, 7);
-    let mut chart = ChartBuilder::on(area)
-        .caption(what, (FONT, 20))
-        .margin_top(6)
-        .margin_bottom(10)
-        .margin_left(12)
-        .margin_right(22)
-        .x_label_area_size(52)
-        .y_label_area_size(72)
-        .build_cartesian_2d((lo - pad)..(hi + pad), 0.0..Y_TOP)
-        .map_err(failed(what))?;
-    chart
-        .configure_mesh()
-        .x_desc(panel.x_label)
-        .y_desc(panel.y_label)
-        .label_style((FONT, 15))
-        .axis_desc_style((FONT, 16))
-        .x_labels(7)
-        .y_labels(6)
-        .x_label_formatter(&|x| format!("{x:.x_decimals$}"))
-        .y_label_formatter(&|y| format!("{y:.1}"))
-        .bold_line_style(BLACK.mix(0.08))
-        .light_line_style(TRANSPARENT)
-        .axis_style(BLACK.mix(0.6))
-        .draw()
-        .map_err(failed(what))?;
+    let mut chart = axes(
+        area,
+        what,
+        (panel.x_label, panel.y_label),
+        ((lo - pad)..(hi + pad), 0.0..Y_TOP),
+        (tick_decimals(hi - lo + 2.0 * pad, 7), 1),
+    )?;
 
     if let Some(steps) = &panel.packed_steps {
         // A right-continuous step: flat from each value to the next, rising at each.

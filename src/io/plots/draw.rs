@@ -5,8 +5,10 @@ use super::panel::Panel;
 use super::target::Target;
 use super::PlotError;
 use crate::laws::Moments;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use std::ops::Range;
 use std::sync::OnceLock;
 
 /// The family name the embedded font is registered under.
@@ -20,7 +22,7 @@ static FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf"
 const HEADROOM: f64 = 1.4;
 
 /// Share of the data range added on each side of the x axis.
-const X_MARGIN: f64 = 0.04;
+pub(super) const X_MARGIN: f64 = 0.04;
 
 /// A data range narrower than this share of its magnitude (or than this, in absolute
 /// terms, for magnitudes below 1) is a single value: a constant law, or grains that
@@ -147,6 +149,43 @@ fn no_negative_zero(x: f64, decimals: usize) -> f64 {
     }
 }
 
+/// The chart of a panel in `area`: its caption `what`, axis labels `labels` (x, y),
+/// ranges (x, y), and the mesh with ticks of `decimals` (x, y) decimals.
+pub(super) fn axes<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    what: &str,
+    labels: (&str, &str),
+    (x, y): (Range<f64>, Range<f64>),
+    (x_decimals, y_decimals): (usize, usize),
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>, PlotError> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(what, (FONT, 20))
+        .margin_top(6)
+        .margin_bottom(10)
+        .margin_left(12)
+        .margin_right(22)
+        .x_label_area_size(52)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x, y)
+        .map_err(failed(what))?;
+    chart
+        .configure_mesh()
+        .x_desc(labels.0)
+        .y_desc(labels.1)
+        .label_style((FONT, 15))
+        .axis_desc_style((FONT, 16))
+        .x_labels(X_TICKS)
+        .y_labels(Y_TICKS)
+        .x_label_formatter(&|x| format!("{x:.x_decimals$}"))
+        .y_label_formatter(&|y| format!("{y:.y_decimals$}"))
+        .bold_line_style(BLACK.mix(0.08))
+        .light_line_style(TRANSPARENT)
+        .axis_style(BLACK.mix(0.6))
+        .draw()
+        .map_err(failed(what))?;
+    Ok(chart)
+}
+
 /// Draws one panel: the packed histogram, the target law, the voxel outline, a legend.
 pub(super) fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -196,31 +235,13 @@ pub(super) fn draw_panel<DB: DrawingBackend>(
     let y_decimals = tick_decimals(y_max, Y_TICKS);
     // Figures in the legend get one decimal more than the ticks.
     let figures = x_decimals + 1;
-    let mut chart = ChartBuilder::on(area)
-        .caption(what, (FONT, 20))
-        .margin_top(6)
-        .margin_bottom(10)
-        .margin_left(12)
-        .margin_right(22)
-        .x_label_area_size(52)
-        .y_label_area_size(72)
-        .build_cartesian_2d((lo - pad)..(hi + pad), 0.0..y_max)
-        .map_err(failed(what))?;
-    chart
-        .configure_mesh()
-        .x_desc(panel.x_label)
-        .y_desc(panel.y_label)
-        .label_style((FONT, 15))
-        .axis_desc_style((FONT, 16))
-        .x_labels(X_TICKS)
-        .y_labels(Y_TICKS)
-        .x_label_formatter(&|x| format!("{x:.x_decimals$}"))
-        .y_label_formatter(&|y| format!("{y:.y_decimals$}"))
-        .bold_line_style(BLACK.mix(0.08))
-        .light_line_style(TRANSPARENT)
-        .axis_style(BLACK.mix(0.6))
-        .draw()
-        .map_err(failed(what))?;
+    let mut chart = axes(
+        area,
+        what,
+        (panel.x_label, panel.y_label),
+        ((lo - pad)..(hi + pad), 0.0..y_max),
+        (x_decimals, y_decimals),
+    )?;
 
     let unit = if panel.x_label.contains("degrees") {
         "\u{b0}"
