@@ -2,7 +2,7 @@
 //! step curve against a tabulated CDF, with the table's points and the packed
 //! fraction passing each tabulated size marked.
 
-use super::draw::{axes, failed, tick_decimals, FONT, PACKED, TARGET, X_MARGIN};
+use super::draw::{axes, failed, legend, tick_decimals, PACKED, TARGET, X_MARGIN};
 use super::PlotError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -118,14 +118,5 @@ pub(super) fn draw_cdf_panel<DB: DrawingBackend>(
             .label(label)
             .legend(move |(x, y)| Circle::new((x + 10, y), MARKER, PACKED.stroke_width(2)));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .margin(8)
-        .legend_area_size(28)
-        .label_font((FONT, 14))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK.mix(0.3))
-        .draw()
-        .map_err(failed(what))
+    legend(&mut chart, SeriesLabelPosition::LowerRight, what)
 }

@@ -288,9 +288,18 @@ pub(super) fn draw_panel<DB: DrawingBackend>(
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], outline));
     }
 
+    legend(&mut chart, legend_at, what)
+}
+
+/// Draws the legend of `chart` (a panel's, captioned `what`) at `at`.
+pub(super) fn legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    at: SeriesLabelPosition,
+    what: &str,
+) -> Result<(), PlotError> {
     chart
         .configure_series_labels()
-        .position(legend_at)
+        .position(at)
         .margin(8)
         .legend_area_size(28)
         .label_font((FONT, 14))
