@@ -5,7 +5,8 @@
 //! that has no answer as an exception naming it (see `row_error`).
 
 use grainpack::contact::{
-    contact_functions, contact_geometry, overlaps, Contact, ContactError, Stop, Sym3, Vec3,
+    contact_functions, contact_geometry, overlaps, Contact, ContactError, ContactGeometry, Stop,
+    Sym3, Vec3,
 };
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -33,6 +34,19 @@ impl Pairs<'_> {
         let q1: Sym3 = self.q1[6 * i..6 * i + 6].try_into().expect("6 columns");
         let q2: Sym3 = self.q2[6 * i..6 * i + 6].try_into().expect("6 columns");
         (r, q1, q2)
+    }
+
+    /// `f` of every row, or the first row without an answer and its error.
+    fn each<T>(
+        &self,
+        f: impl Fn(&Vec3, &Sym3, &Sym3) -> Result<T, ContactError>,
+    ) -> Result<Vec<T>, (usize, ContactError)> {
+        (0..self.len())
+            .map(|i| {
+                let (r, a, b) = self.get(i);
+                f(&r, &a, &b).map_err(|e| (i, e))
+            })
+            .collect()
     }
 }
 
@@ -125,25 +139,9 @@ pub fn overlaps_rows<'py>(
 ) -> PyResult<Bound<'py, PyArray1<bool>>> {
     let p = pairs(&r12, &q1, &q2)?;
     let answers = py
-        .detach(|| {
-            (0..p.len())
-                .map(|i| {
-                    let (r, a, b) = p.get(i);
-                    overlaps(&r, &a, &b).map_err(|e| (i, e))
-                })
-                .collect::<Result<Vec<bool>, _>>()
-        })
+        .detach(|| p.each(overlaps))
         .map_err(|(row, e)| row_error(row, &e))?;
     Ok(answers.into_pyarray(py))
-}
-
-/// Contact geometry arrays of every row.
-pub struct GeometryRows {
-    mu2: Vec<f64>,
-    lambda: Vec<f64>,
-    point: Vec<f64>,
-    normal: Vec<f64>,
-    gap: Vec<f64>,
 }
 
 type GeometryArrays<'py> = (
@@ -165,37 +163,21 @@ pub fn contact_geometry_rows<'py>(
     let p = pairs(&r12, &q1, &q2)?;
     let n = p.len();
     let rows = py
-        .detach(|| {
-            let mut out = GeometryRows {
-                mu2: Vec::with_capacity(n),
-                lambda: Vec::with_capacity(n),
-                point: Vec::with_capacity(3 * n),
-                normal: Vec::with_capacity(3 * n),
-                gap: Vec::with_capacity(n),
-            };
-            for i in 0..n {
-                let (r, a, b) = p.get(i);
-                let g = contact_geometry(&r, &a, &b).map_err(|e| (i, e))?;
-                out.mu2.push(g.mu2);
-                out.lambda.push(g.lambda);
-                out.point.extend(g.point);
-                out.normal.extend(g.normal);
-                out.gap.push(g.gap);
-            }
-            Ok(out)
-        })
-        .map_err(|(row, e): (usize, ContactError)| row_error(row, &e))?;
+        .detach(|| p.each(contact_geometry))
+        .map_err(|(row, e)| row_error(row, &e))?;
     let matrix = |v: Vec<f64>| {
         Array2::from_shape_vec((n, 3), v)
             .expect("3 values per row")
             .into_pyarray(py)
     };
+    let column =
+        |f: fn(&ContactGeometry) -> f64| rows.iter().map(f).collect::<Vec<f64>>().into_pyarray(py);
     Ok((
-        rows.mu2.into_pyarray(py),
-        rows.lambda.into_pyarray(py),
-        matrix(rows.point),
-        matrix(rows.normal),
-        rows.gap.into_pyarray(py),
+        column(|g| g.mu2),
+        column(|g| g.lambda),
+        matrix(rows.iter().flat_map(|g| g.point).collect()),
+        matrix(rows.iter().flat_map(|g| g.normal).collect()),
+        column(|g| g.gap),
     ))
 }
 
