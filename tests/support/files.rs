@@ -3,11 +3,11 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// A fresh, empty scratch directory `grainpack-{prefix}-{pid}-{name}` in the system's
-/// temporary directory.
+/// A fresh, empty scratch directory `{prefix}-{name}` in cargo's temporary directory for
+/// integration tests (`target/tmp`): one per test, emptied when the test starts again and
+/// left in place afterwards to look at, so repeated runs do not fill the system's `/tmp`.
 pub fn scratch(prefix: &str, name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("grainpack-{prefix}-{}-{name}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{prefix}-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
