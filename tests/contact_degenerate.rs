@@ -6,7 +6,7 @@
 //! `cargo test --release --test contact_degenerate -- --ignored --nocapture`.
 
 use grainpack::contact::{
-    contact_function, contact_geometry, rational::contact_function_rational, Method, Stop,
+    contact_function, contact_geometry, rational::contact_function_rational, wang, Method, Stop,
 };
 use grainpack::io::cases::{Case, CaseTable};
 
@@ -78,6 +78,23 @@ fn print_the_summary() {
             };
             println!("| `{method}` | {category} | {n} | {errors} | {err} | {wrong} |");
         }
+    }
+    // What decided wang's answers, on this set and on the typical and extreme ones.
+    for name in [
+        "contact_typical.csv",
+        "contact_extreme.csv",
+        "contact_degenerate.csv",
+    ] {
+        let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
+        let table = CaseTable::read(std::fs::File::open(&path).unwrap()).unwrap();
+        let (mut rows, mut handed) = (0, 0);
+        for i in 0..table.rows.len() {
+            let c = table.case(i).unwrap();
+            rows += 1;
+            let (_, by) = wang::separation(&c.r12, &c.q1, &c.q2).unwrap();
+            handed += usize::from(by == wang::Decided::ContactFunction);
+        }
+        println!("wang on {name}: {handed} of {rows} decided by the contact function");
     }
 }
 
@@ -182,4 +199,33 @@ fn contact_geometry_of_sizes_far_apart() {
         }
     }
     assert!(checked_second > 50, "{checked_second}");
+}
+
+/// On the typical and extreme sets too, `wang::separated` is never wrong away from
+/// tangency, and on the typical set the condition decides every pair itself (none is
+/// handed to the contact function).
+#[test]
+fn wang_is_right_on_the_typical_and_extreme_sets() {
+    for name in ["contact_typical.csv", "contact_extreme.csv"] {
+        let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
+        let table = CaseTable::read(std::fs::File::open(&path).unwrap()).unwrap();
+        let mut handed = std::collections::BTreeMap::new();
+        for i in 0..table.rows.len() {
+            let (c, mu2) = (table.case(i).unwrap(), table.number(i, "mu2").unwrap());
+            let (apart, by) = wang::separation(&c.r12, &c.q1, &c.q2).unwrap();
+            if (mu2 - 1.0).abs() > TANGENCY {
+                assert_eq!(apart, mu2 > 1.0, "{name} line {}: μ² = {mu2}", c.line);
+            }
+            let category = match table.column("category") {
+                Some(k) => table.rows[i].as_ref().unwrap().1[k].to_string(),
+                None => "typical".to_string(),
+            };
+            *handed.entry(category).or_insert(0) +=
+                usize::from(by == wang::Decided::ContactFunction);
+        }
+        println!("{name}: handed over {handed:?}");
+        if name == "contact_typical.csv" {
+            assert_eq!(handed["typical"], 0);
+        }
+    }
 }

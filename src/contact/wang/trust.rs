@@ -5,11 +5,12 @@
 //! `(1−s)⁴ p(−s/(1−s)) = det(−sA − (1−s)B) = det M(s)`, `M(s) = sA + (1−s)B`, with
 //! `A = [[P1, 0], [0, −1]]`, `B = [[P2, −u], [−uᵀ, rᵀu − 1]]`, `Pi = Qi⁻¹`, `u = P2 r`.
 //! Everything the coefficients are made of is bounded entrywise:
-//! - `Pi = adj Qi / det Qi`: each entry of the adjugate errs by a few `ε` times the
-//!   same minor with absolute values (`|adj|`), and `det Qi` by `τ_i ε` relative,
-//!   `τ_i = per|Qi| / det Qi` (the permanent of `|Qi|` over the determinant, ≥ 1, a
-//!   condition number of the determinant). So `|ΔPi| ≤ INVERSE_ERR · ε τ_i |adj Qi| /
-//!   det Qi` entrywise, and `|Pi| ≤ |adj Qi| / det Qi`;
+//! - `Pi = adj Qi / det Qi`: each entry of the adjugate errs by `2ε` times the same
+//!   minor with absolute values (`[adj]`, which may be `κ` times `|adj|` for a thin
+//!   form), and `det Qi` by `4 τ_i ε` relative, `τ_i = per|Qi| / det Qi` (the permanent
+//!   of `|Qi|` over the determinant, ≥ 1, a condition number of the determinant). So
+//!   `|ΔPi| ≤ ε (ADJUGATE_ERR [adj] + DET_ERR τ_i |adj|) / det Qi` entrywise, around
+//!   the computed `Pi`;
 //! - `u` and `rᵀu` inherit `ΔP2` through `|r|`, plus their own dot-product roundings.
 //!
 //! A perturbation `Δ` of the entries of `M` moves its determinant by at most
@@ -22,11 +23,14 @@
 use crate::contact::sym::{adjugate, det};
 use crate::contact::{Sym3, Vec3};
 
-/// Entrywise error of `Pi = adj Qi / det Qi` in units of `ε τ_i |adj Qi| / det Qi`:
-/// each adjugate entry (two products and a difference) errs by `2ε |adj|`, the
-/// determinant (a three-term dot product of them) by `4ε τ` relative, the division by
-/// `ε`; 16 covers their sum with a margin of two.
-const INVERSE_ERR: f64 = 16.0;
+/// Error of an adjugate entry (two products and a difference: `2ε [adj]`), and of
+/// its division by the determinant, in units of `ε [adj] / det`, with a margin of two.
+const ADJUGATE_ERR: f64 = 6.0;
+
+/// Relative error of `det Qi` (a three-term dot product of the adjugate's first row:
+/// `4ε τ`, to first order) passed on to `Pi`, in units of `ε τ |adj| / det`, with a
+/// margin of two.
+const DET_ERR: f64 = 8.0;
 
 /// Rounding of the polynomial arithmetic in units of `ε · per(|M(s)| + Δ)`: the
 /// coefficients of `det(λA − B)` go through about a dozen operations each
@@ -81,8 +85,8 @@ pub(super) fn error_bound(r: &Vec3, q1: &Sym3, q2: &Sym3) -> Option<[f64; 5]> {
     bound.iter().all(|e| e.is_finite()).then_some(bound)
 }
 
-/// `(|Q⁻¹|, ΔQ⁻¹)` entrywise bounds (module docs), or `None` if `det Q` as computed
-/// is not positive or the bounds are not finite.
+/// `(|P̂|, ΔP)` entrywise for the computed `P̂ = adj Q / det Q` (module docs), or `None`
+/// if `det Q` as computed is not positive or the bounds are not finite.
 fn inverse_bounds(q: &Sym3) -> Option<(Sym3, Sym3)> {
     let adj = adjugate(q);
     let d = det(q, &adj);
@@ -100,8 +104,11 @@ fn inverse_bounds(q: &Sym3) -> Option<(Sym3, Sym3)> {
         return None;
     }
     let tau = per / d;
-    let size = abs_adj.map(|x| x / d);
-    let err = size.map(|x| INVERSE_ERR * f64::EPSILON * tau * x);
+    let size = adj.map(|x| x.abs() / d);
+    let err: Sym3 = std::array::from_fn(|k| {
+        let adj_k = adj[k].abs() + 2.0 * f64::EPSILON * abs_adj[k];
+        f64::EPSILON * (ADJUGATE_ERR * abs_adj[k] + DET_ERR * tau * adj_k) / d
+    });
     (size.iter().chain(&err).all(|x| x.is_finite())).then_some((size, err))
 }
 
