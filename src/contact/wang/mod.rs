@@ -19,6 +19,11 @@
 //! so it has two distinct negative roots iff `p(λ) > 0` for some `λ < 0`.
 //! The negative axis is mapped onto `s ∈ (0, 1)` by `λ = −s/(1−s)`, and the maximum of
 //! `P(s) = (1−s)⁴ p(−s/(1−s))` is taken over the roots of the cubic `P'` in `[0, 1]`.
+//!
+//! The coefficients are rounded, at times badly (inverses of thin forms, sizes far
+//! apart): the decision is taken only where `P` minus a bound on its error (module
+//! `trust`) is positive somewhere, or `P` plus it negative everywhere; otherwise, and
+//! for semi-definite forms, the contact function decides (see [`separated`]).
 
 use super::scale::{exponent, ldexp, pow2};
 use super::scale::{rescale, validate};
@@ -87,8 +92,11 @@ pub fn characteristic_polynomial(
 /// semi-definite forms (a flat disc, a needle or a point has no canonical matrix
 /// `Q⁻¹`) are decided by the sign of [`contact_function`]`'s μ² − 1`
 /// ([`Decided::ContactFunction`], see [`separation`]): never a decision the
-/// arithmetic does not support. On the typical reference set the condition itself
-/// decides every pair but those within ~1e-12 of touching.
+/// arithmetic does not support. Measured (`tests/contact_degenerate.rs`): the condition
+/// decides all 1000 pairs of the typical reference set itself and 1295 of the 1745
+/// extreme ones (it hands over most near-tangent pairs, aspect ratios near 1e4 and
+/// nearly identical thin pairs), and 33 of the 430 degenerate ones (the rest are
+/// semi-definite, or sizes ~1e7 or more apart).
 ///
 /// ```
 /// use grainpack::contact::wang::separated;
