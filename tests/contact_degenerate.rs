@@ -198,6 +198,7 @@ fn contact_geometry_of_sizes_far_apart() {
             );
         }
     }
+    println!("second ellipsoid checked on {checked_second} rows");
     assert!(checked_second > 50, "{checked_second}");
 }
 
