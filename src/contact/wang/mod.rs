@@ -84,15 +84,16 @@ pub fn characteristic_polynomial(
 /// has two distinct negative real roots (two distinct positive roots of `det(λA + B)`).
 /// Touching pairs are not separated.
 ///
-/// The condition is decided only where the rounding of the coefficients cannot have
-/// turned it: the computed `P(s)` minus an entrywise error bound (module `trust`,
-/// growing with the condition numbers of `Q1`, `Q2` and with `r12ᵀQ2⁻¹r12`) is above 0
-/// somewhere, or plus the bound it is below 0 everywhere. Pairs within that bound of
-/// touching, coefficients beyond double range (sizes ~1e50 or more apart), and
+/// The condition decides only where the rounding of the coefficients cannot have
+/// turned it: the computed `P(s)` minus a bound on its error (module `trust`: first
+/// order in `ε` with a margin of two, growing with the condition numbers of `Q1`, `Q2`,
+/// with `r12ᵀQ2⁻¹r12` and with the ratio of the sizes) is above 0 at the maximiser
+/// found, or `P(s)` plus the bound is below 0 at every maximum the search of `[0, 1]`
+/// finds. Pairs within that bound of touching, coefficients beyond double range, and
 /// semi-definite forms (a flat disc, a needle or a point has no canonical matrix
 /// `Q⁻¹`) are decided by the sign of [`contact_function`]`'s μ² − 1`
-/// ([`Decided::ContactFunction`], see [`separation`]): never a decision the
-/// arithmetic does not support. Measured (`tests/contact_degenerate.rs`): the condition
+/// ([`Decided::ContactFunction`], see [`separation`]), never by a condition within
+/// its rounding. Measured (`tests/contact_degenerate.rs`): the condition
 /// decides all 1000 pairs of the typical reference set itself and 1295 of the 1745
 /// extreme ones (it hands over most near-tangent pairs, aspect ratios near 1e4 and
 /// nearly identical thin pairs), and 33 of the 430 degenerate ones (the rest are
