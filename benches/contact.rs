@@ -6,9 +6,7 @@
 
 mod common;
 
-use grainpack::contact::{
-    overlaps_prepared, Answer, Ellipsoid, Method, PreparedEllipsoid, Sym3, Vec3,
-};
+use grainpack::contact::{overlaps_prepared, Answer, Method, PreparedEllipsoid, Sym3, Vec3};
 use grainpack::io::cases::CaseTable;
 use hoomd_geometry::{shape::Ellipsoid as HoomdEllipsoid, Convex, IntersectsAt};
 use hoomd_vector::{Cartesian, Quaternion, Versor};
@@ -139,7 +137,9 @@ type PreparedPair = (Vec3, PreparedEllipsoid, PreparedEllipsoid);
 /// The pairs prepared for `overlaps_prepared`; `None` where a form is not an ellipsoid
 /// it takes (the semi-definite forms of the degenerate set).
 fn prepare(set: &Set) -> Vec<Option<PreparedPair>> {
-    let p = |q: &Sym3| PreparedEllipsoid::new(&Ellipsoid::from_quadratic_form(*q).ok()?).ok();
+    // Semi-definite forms too (issue 12): they have no factors, and their pairs go to
+    // `overlaps`.
+    let p = |q: &Sym3| PreparedEllipsoid::from_quadratic_form(q).ok();
     set.pairs
         .iter()
         .map(|(r, q1, q2)| Some((*r, p(q1)?, p(q2)?)))

@@ -1,12 +1,11 @@
 //! Where and along which normal two ellipsoids touch once scaled by μ, and how far apart
 //! they are.
 
-use super::direct::factor_at;
 use super::ldl::Ldl;
-use super::perram_wertheim::rank;
+use super::perram_wertheim::{lambda_and_complement, rank};
 use super::scale::{exponent, pow2};
 use super::sym::{adjugate, dot, frobenius, polarised_adjugate, sym_mul};
-use super::{contact_function, contact_function_fast, Contact, ContactError, Sym3, Vec3};
+use super::{contact_function, contact_function_fast, Contact, ContactError, Sym3, Vec3, NEAR_END};
 
 /// Contact geometry of a pair, for collision response.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,7 +62,13 @@ fn geometry_from(
     if d == 0.0 {
         return Err(ContactError::CoincidentCentres);
     }
-    let (lambda, m) = (c.lambda, 1.0 - c.lambda);
+    // Near an end, 1 − λ from the path that carries it (λ may have rounded to 1).
+    let near_end = c.lambda < NEAR_END || c.lambda > 1.0 - NEAR_END;
+    let (lambda, m) = if near_end {
+        lambda_and_complement(r12, q1, q2)?
+    } else {
+        (c.lambda, 1.0 - c.lambda)
+    };
     // μ² the limit of f at an end where that end's form is singular (a point, a needle,
     // or a disc the other ellipsoid reaches inside its rim): the limits there. λ is
     // then exactly 0 or 1 (or within rounding of it), and Q(λ) that form.
@@ -79,9 +84,21 @@ fn geometry_from(
     let (point, s) = match limit {
         Some(found) => found,
         None => {
-            let (_, ldl) = factor_at(lambda, q1, q2)?;
+            // Near an end (1−λ)Q1 is formed first: Q1 s alone may overflow when 1 − λ
+            // is tiny. Elsewhere as before, so that results stay bitwise the same.
+            let mq1 = q1.map(|x| m * x);
+            let q: Sym3 = std::array::from_fn(|k| mq1[k] + lambda * q2[k]);
+            let ldl =
+                Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
+                    what: "(1−λ)q1 + λq2",
+                    pivot,
+                    value,
+                })?;
             let s = ldl.solve(r12);
-            (sym_mul(q1, &s).map(|x| m * x), s)
+            match near_end {
+                true => (sym_mul(&mq1, &s), s),
+                false => (sym_mul(q1, &s).map(|x| m * x), s),
+            }
         }
     };
     let mut norm = dot(&s, &s).sqrt();
@@ -97,17 +114,13 @@ fn geometry_from(
     let gap = (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal);
     if !(gap.is_finite() && norm.is_finite() && norm > 0.0) || point.iter().any(|x| !x.is_finite())
     {
-        // λ* within rounding of an end with a definite form there (sizes ~1e16 or more
-        // apart): (1 − λ) Q1 Q(λ)⁻¹ r12 needs 1 − λ, which λ no longer carries.
-        let what = match lambda {
-            0.0 | 1.0 => "the contact point (λ* is within rounding of 0 or 1: sizes too far apart)",
-            _ => "the contact geometry",
-        };
-        return Err(ContactError::Overflow { what });
+        return Err(ContactError::Overflow {
+            what: "the contact geometry (the point or the gap beyond double range)",
+        });
     }
     Ok(ContactGeometry {
         mu2: c.mu2,
-        lambda,
+        lambda: c.lambda,
         point,
         normal,
         gap,

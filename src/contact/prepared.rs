@@ -3,8 +3,9 @@
 use super::direct::condition_bound;
 use super::ellipsoid::{Ellipsoid, ShapeError};
 use super::ldl::Ldl;
-use super::scale::diagonal_in_safe_range;
-use super::Sym3;
+use super::perram_wertheim::rank;
+use super::scale::{diagonal_in_safe_range, exponent, pow2};
+use super::{ContactError, Sym3};
 
 /// An ellipsoid with what repeated contact queries need: its LDLᵀ factors, exact
 /// bounding and inscribed radii (largest and smallest semi-axis), and a bound on the
@@ -13,9 +14,16 @@ use super::Sym3;
 /// Build it once per shape; [`PreparedEllipsoid::scaled`] follows a growing grain
 /// without a new eigen-decomposition. Use it with
 /// [`overlaps_prepared`](super::overlaps_prepared).
+///
+/// Semi-definite forms (a flat disc, a zero-radius needle, a point) and forms too thin
+/// for the LDLᵀ rule ([`MIN_RELATIVE_PIVOT`](super::MIN_RELATIVE_PIVOT)) are built by
+/// [`PreparedEllipsoid::from_quadratic_form`]: they have no factors, and
+/// `overlaps_prepared` decides their pairs as [`overlaps`](super::overlaps) does.
 #[derive(Debug, Clone, Copy)]
 pub struct PreparedEllipsoid {
     q: Sym3,
+    /// The factors of `q`; those of `I` for a form that does not factor (then
+    /// `condition` is infinite and `unscaled` false, so they are never used).
     pub(crate) ldl: Ldl,
     bounding_radius: f64,
     inscribed_radius: f64,
@@ -26,6 +34,61 @@ pub struct PreparedEllipsoid {
 }
 
 impl PreparedEllipsoid {
+    /// Prepares any positive semi-definite form: definite ones as [`PreparedEllipsoid::new`]
+    /// does, singular ones (and definite ones too thin to factor) with no factors, an
+    /// inscribed radius of 0 and their largest semi-axis from an eigen-decomposition.
+    ///
+    /// ```
+    /// use grainpack::contact::{overlaps_prepared, Ellipsoid, PreparedEllipsoid};
+    /// let disc = PreparedEllipsoid::from_quadratic_form(&[1.0, 0.0, 0.0, 1.0, 0.0, 0.0]).unwrap();
+    /// let ball = PreparedEllipsoid::new(&Ellipsoid::sphere(1.0).unwrap()).unwrap();
+    /// assert!(overlaps_prepared(&[0.0, 0.0, 0.9], &disc, &ball).unwrap());
+    /// assert!(!overlaps_prepared(&[0.0, 0.0, 1.1], &disc, &ball).unwrap());
+    /// ```
+    ///
+    /// # Errors
+    /// [`ContactError::NotFinite`] (`what = "q"`) for NaN or infinite entries;
+    /// [`ContactError::NotPositiveDefinite`] for a form that is not semi-definite.
+    pub fn from_quadratic_form(q: &Sym3) -> Result<Self, ContactError> {
+        if let Some(index) = q.iter().position(|x| !x.is_finite()) {
+            let value = q[index];
+            return Err(ContactError::NotFinite {
+                what: "q",
+                index,
+                value,
+            });
+        }
+        if let Ok(e) = Ellipsoid::from_quadratic_form(*q) {
+            if let Ok(p) = Self::new(&e) {
+                return Ok(p);
+            }
+        }
+        let top = q[0].max(q[3]).max(q[5]);
+        let unit = if top > 0.0 { pow2(-exponent(top)) } else { 1.0 };
+        let indefinite = || {
+            let (pivot, value) = Ldl::factor(q).err().unwrap_or((2, 0.0));
+            ContactError::NotPositiveDefinite {
+                what: "q",
+                pivot,
+                value,
+            }
+        };
+        let semi_definite = q.iter().all(|&x| x == 0.0) || top > 0.0;
+        if !semi_definite || rank(&q.map(|x| x * unit)).is_none() {
+            return Err(indefinite());
+        }
+        let m = Ellipsoid { q: *q }.matrix();
+        let largest = m.symmetric_eigenvalues().max().max(0.0);
+        Ok(Self {
+            q: *q,
+            ldl: Ldl::unchecked(&[1.0, 0.0, 0.0, 1.0, 0.0, 1.0]),
+            bounding_radius: largest.sqrt(),
+            inscribed_radius: 0.0,
+            condition: f64::INFINITY,
+            unscaled: false,
+        })
+    }
+
     /// Prepares an ellipsoid (validated by its constructor).
     pub fn new(e: &Ellipsoid) -> Result<Self, ShapeError> {
         Self::with_semi_axes(e, e.semi_axes())
@@ -61,7 +124,7 @@ impl PreparedEllipsoid {
             bounding_radius: self.bounding_radius * factor,
             inscribed_radius: self.inscribed_radius * factor,
             condition: self.condition,
-            unscaled: diagonal_in_safe_range(&q),
+            unscaled: self.condition.is_finite() && diagonal_in_safe_range(&q),
         }
     }
 

@@ -346,5 +346,16 @@ pub use corrector::CUBIC_TERM_TOL;
 use corrector::{correct, correct_checking, correct_further, finished};
 pub(crate) use exact::rank;
 pub use exact::SINGULAR_PIVOT;
-use robust::solve_robust;
+use robust::{solve_robust, solve_with_complement};
+
+/// λ* and `1 − λ*`, each to its own relative precision, by the path for sizes far
+/// apart (module `robust`), for finite input: the contact geometry of a pair whose λ*
+/// is within [`NEAR_END`] of an end needs `1 − λ*`, which λ* no longer carries.
+pub(crate) fn lambda_and_complement(
+    r12: &Vec3,
+    q1: &Sym3,
+    q2: &Sym3,
+) -> Result<(f64, f64), ContactError> {
+    solve_with_complement(r12, q1, q2, 0).map(|(c, m)| (c.lambda, m))
+}
 pub use robust::NEAR_END;

@@ -59,6 +59,12 @@ pub const NEAR_END: f64 = 1.0 / (1u64 << 24) as f64;
 /// path is cold.
 const FINAL_GAIN: f64 = f64::EPSILON / 8.0;
 
+/// Once `F` is settled, Newton goes on until its step in `u = ln y` is at most
+/// `LOG_Y_STEP · (1 + |u|)`: λ* to about that relative precision. Where the sizes are
+/// far apart `F` is flat to an ulp over a range of λ (measured: λ off by half on a
+/// `huge_ratio` reference pair), and the contact point moves with λ.
+const LOG_Y_STEP: f64 = 1e-10;
+
 /// Smallest `y = λ̂/(1−λ̂)` the search considers: below it `F` differs from its limit
 /// at 0 by far less than an ulp.
 const SMALLEST_Y: f64 = f64::MIN_POSITIVE;
@@ -72,13 +78,24 @@ pub(super) fn solve_robust(
     q2: &Sym3,
     mu2_exp: i32,
 ) -> Result<Contact, ContactError> {
+    solve_with_complement(r, q1, q2, mu2_exp).map(|(c, _)| c)
+}
+
+/// [`solve_robust`], with `1 − λ` to its own relative precision (λ itself rounds to 1
+/// when `1 − λ` is below `ε/2`, for sizes ~1e8 or more apart).
+pub(super) fn solve_with_complement(
+    r: &Vec3,
+    q1: &Sym3,
+    q2: &Sym3,
+    mu2_exp: i32,
+) -> Result<(Contact, f64), ContactError> {
     let (e1, q1) = normalised(q1, "q1")?;
     let (e2, q2) = normalised(q2, "q2")?;
     let k1 = rank(&q1).ok_or_else(|| indefinite(&q1, "q1"))?;
     let k2 = rank(&q2).ok_or_else(|| indefinite(&q2, "q2"))?;
     let rmax = r[0].abs().max(r[1].abs()).max(r[2].abs());
     if rmax == 0.0 {
-        return finish(0, 0.0, 0.5, Stop::Exact, 0);
+        return Ok((finish(0, 0.0, 0.5, Stop::Exact, 0)?, 0.5));
     }
     if k1 < 3 && k2 < 3 {
         let sum: Sym3 = std::array::from_fn(|k| q1[k] + q2[k]);
@@ -107,8 +124,13 @@ pub(super) fn solve_robust(
     let m = maximise(&n, &c, odds)?;
     // Back from λ̂ to λ: λ = t̂ w2 / (ŝ w1 + t̂ w2).
     let (s, t) = (m.s * w1, m.t * w2);
-    let lambda = if s + t > 0.0 { t / (s + t) } else { 0.5 };
-    finish(mu2_exp + 2 * j - em, m.value, lambda, m.stop, m.iterations)
+    let (lambda, complement) = if s + t > 0.0 {
+        (t / (s + t), s / (s + t))
+    } else {
+        (0.5, 0.5)
+    };
+    let c = finish(mu2_exp + 2 * j - em, m.value, lambda, m.stop, m.iterations)?;
+    Ok((c, complement))
 }
 
 /// `(log2 σ, Q/σ)` with `σ` the power of two that brings the largest diagonal entry
@@ -310,9 +332,16 @@ fn root(n: &[f64; 5], c: &[f64; 5], start: f64) -> (f64, f64, Stop, u32) {
         let step_at_rounding = (newton - u).abs() <= 4.0 * f64::EPSILON * (1.0 + u.abs());
         if p == 0.0 || (v < 0.0 && (p * p <= 2.0 * FINAL_GAIN * -v || step_at_rounding)) {
             // The last step, unless it leaves the bracket (where F is flat to far below
-            // an ulp and the step is all rounding).
+            // an ulp and the step is all rounding). F is settled; λ is too once the
+            // step is below LOG_Y_STEP (F may be flat over a wide range of y, and the
+            // contact point moves with λ), else Newton goes on.
             let last = if inside { newton.exp() } else { y };
-            return (ratio(n, c, last), last, Stop::Converged, iterations);
+            let settled = (newton - u).abs() <= LOG_Y_STEP * (1.0 + u.abs());
+            if !inside || settled || step_at_rounding || p == 0.0 || iterations == MAX_ITERATIONS {
+                return (ratio(n, c, last), last, Stop::Converged, iterations);
+            }
+            u = newton;
+            continue;
         }
         if hi - lo <= 4.0 * f64::EPSILON * (1.0 + u.abs()) {
             return (ratio(n, c, y), y, Stop::Converged, iterations);

@@ -15,7 +15,7 @@
 
 use super::scale::{in_safe_range, ldexp, rescale, validate};
 use super::sym::pencil_coefficients;
-use super::{Contact, ContactError, Stop, Sym3, Vec3};
+use super::{contact_function, Contact, ContactError, Stop, Sym3, Vec3, NEAR_END};
 use root::maximiser;
 
 mod root;
@@ -57,15 +57,34 @@ pub const HORNER_REL_ERR: f64 = 12.0 * f64::EPSILON;
 /// assert!((c.mu2 - 4.0).abs() < 1e-13);
 /// ```
 ///
+/// Pairs the rational form cannot take get [`contact_function`]'s answer (a few ulps,
+/// its [`Stop`] and iterations): a semi-definite form (a flat disc, a needle or a
+/// point has `det Q = 0`, and `c(0) = 0`), a form thinner than
+/// [`MIN_RELATIVE_PIVOT`](super::MIN_RELATIVE_PIVOT) resolves, or sizes so far apart
+/// (a factor ~1e25 or more) that `det` and `adj` of the forms leave the double range,
+/// or whose maximiser for two spheres lies within [`NEAR_END`] of an end (~1e7 apart).
+///
 /// # Errors
-/// [`ContactError::NotFinite`] or [`ContactError::NotPositiveDefinite`] for bad input;
-/// [`ContactError::Overflow`] if μ² or an intermediate is out of double range (e.g. sizes
-/// differing by a factor ~1e75, whose determinants underflow).
+/// [`ContactError::NotFinite`] for bad input; [`contact_function`]'s errors where μ² is
+/// not defined ([`ContactError::NotPositiveDefinite`] for indefinite forms,
+/// [`ContactError::CommonNullDirection`]) or out of double range
+/// ([`ContactError::Overflow`]).
 pub fn contact_function_rational(
     r12: &Vec3,
     q1: &Sym3,
     q2: &Sym3,
 ) -> Result<Contact, ContactError> {
+    match rational(r12, q1, q2) {
+        // A semi-definite (or too thin) form, or sizes beyond what det and adj resolve:
+        // the contact function answers, or says why μ² is not defined.
+        Err(ContactError::NotPositiveDefinite { .. } | ContactError::Overflow { .. }) => {
+            contact_function(r12, q1, q2)
+        }
+        other => other,
+    }
+}
+
+fn rational(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Contact, ContactError> {
     validate(r12, q1, q2)?;
     let (r, q1, q2, _) = rescale(r12, q1, q2);
     // f is homogeneous of degree 2 in r12: solve for r/2^k, then multiply μ² by 4^k.
@@ -84,6 +103,7 @@ pub fn contact_function_rational(
     } else {
         r_max.log2().floor() as i32
     };
+    let r_in = r;
     let r = r.map(|x| ldexp(x, -k));
 
     // a(λ) = Σ ha_k (1−λ)^{2−k} λ^k and b(λ) = Σ hb_k (1−λ)^{3−k} λ^k: every term is
@@ -101,6 +121,11 @@ pub fn contact_function_rational(
     }
     let (rho1, rho2) = (ha[0] / hb[0], ha[2] / hb[3]);
     let guess = rho2.sqrt() / (rho1.sqrt() + rho2.sqrt());
+    if !(NEAR_END..=1.0 - NEAR_END).contains(&guess) {
+        // Sizes ~1e7 or more apart: the monomials of c lose λ* near the end (measured
+        // 6e-14 on a `huge_ratio` reference pair); the contact function's path for them.
+        return contact_function(&r_in, &q1, &q2);
+    }
     // Monomials lose accuracy far from λ = 0: past ½, solve the mirrored pair (Q1 and Q2
     // swapped, λ → 1 − λ), whose coefficients are the same ones in reverse order.
     let (lambda, stop, iterations) = if guess > 0.5 {
