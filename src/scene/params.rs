@@ -27,6 +27,9 @@ pub struct PackingParams {
     /// kept (about `effort` times the time). Higher is denser and slower.
     /// In `[0.1, 100]`; default 1.
     pub effort: f64,
+    /// Unjamming moves before each of effort's recompression cycles (so only with
+    /// `effort` ≥ 2): see [`Unjam`]. Default [`Unjam::None`].
+    pub unjam: Unjam,
 }
 
 impl Default for PackingParams {
@@ -38,6 +41,7 @@ impl Default for PackingParams {
             max_turn: std::f64::consts::PI,
             restore: true,
             effort: 1.0,
+            unjam: Unjam::None,
         }
     }
 }
@@ -65,5 +69,39 @@ impl Rotation {
             Self::Free => "free",
             Self::Axis => "axis",
         }
+    }
+}
+
+/// Unjamming moves between effort's recompression cycles (`packing.unjam`; the loop's
+/// `unjam` module documents them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unjam {
+    /// None (`"none"`).
+    None,
+    /// Grains of similar volume swap positions where that lowers the overlap energy,
+    /// each keeping its orientation (`"swap"`).
+    Swap,
+    /// Every grain is displaced (and, if it may turn, turned) a little at random, then
+    /// the packing relaxed (`"shake"`).
+    Shake,
+    /// Both (`"swap+shake"`).
+    Both,
+}
+
+impl Unjam {
+    /// Every value, as the scene file names it.
+    pub const NAMES: [(&'static str, Self); 4] = [
+        ("none", Self::None),
+        ("swap", Self::Swap),
+        ("shake", Self::Shake),
+        ("swap+shake", Self::Both),
+    ];
+
+    /// The value as the scene file and `summary.json` name it.
+    pub fn name(self) -> &'static str {
+        Self::NAMES
+            .iter()
+            .find(|(_, u)| *u == self)
+            .map_or("none", |(n, _)| n)
     }
 }

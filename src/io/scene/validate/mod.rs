@@ -17,7 +17,7 @@ use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
     mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase,
-    PhaseTexture, Rotation, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
+    PhaseTexture, Rotation, Scene, Unjam, MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -359,6 +359,18 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
     }
     if let Some(v) = &raw.restore {
         params.restore = *v.get_ref();
+    }
+    if let Some(v) = &raw.unjam {
+        params.unjam = (Unjam::NAMES.iter())
+            .find(|(name, _)| name == v.get_ref())
+            .map(|&(_, u)| u)
+            .ok_or_else(|| {
+                src.invalid_at(
+                    "packing.unjam",
+                    v,
+                    "must be \"none\", \"swap\", \"shake\" or \"swap+shake\"",
+                )
+            })?;
     }
     Ok(params)
 }

@@ -1,0 +1,1 @@
+//! Tests of the unjamming moves on small scenes.
