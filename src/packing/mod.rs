@@ -169,7 +169,7 @@ pub fn pack(
             s = low * (1.0 + RECOMPRESSION);
             // Issue 16, part B: unjamming moves (`packing.unjam`) before the relaxation
             // at the recompressed scale.
-            unjammer.before_recompression(&mut state, &mut fire, &mut run, &protocol, low, s)?;
+            unjammer.before_recompression(&mut state, &mut fire, &mut run, &protocol, s)?;
             continue;
         }
         s = 0.5 * (low + stuck);

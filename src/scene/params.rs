@@ -78,30 +78,20 @@ impl Rotation {
 pub enum Unjam {
     /// None (`"none"`).
     None,
-    /// Grains of similar volume swap positions where that lowers the overlap energy,
-    /// each keeping its orientation (`"swap"`).
+    /// Grains of similar volume swap positions where that lowers the overlap energy of
+    /// the recompressed packing, each keeping its orientation (`"swap"`).
     Swap,
-    /// Every grain is displaced (and, if it may turn, turned) a little at random, then
-    /// the packing relaxed (`"shake"`).
-    Shake,
-    /// Both (`"swap+shake"`).
-    Both,
 }
 
 impl Unjam {
     /// Every value, as the scene file names it.
-    pub const NAMES: [(&'static str, Self); 4] = [
-        ("none", Self::None),
-        ("swap", Self::Swap),
-        ("shake", Self::Shake),
-        ("swap+shake", Self::Both),
-    ];
+    pub const NAMES: [(&'static str, Self); 2] = [("none", Self::None), ("swap", Self::Swap)];
 
     /// The value as the scene file and `summary.json` name it.
     pub fn name(self) -> &'static str {
-        Self::NAMES
-            .iter()
-            .find(|(_, u)| *u == self)
-            .map_or("none", |(n, _)| n)
+        match self {
+            Self::None => "none",
+            Self::Swap => "swap",
+        }
     }
 }

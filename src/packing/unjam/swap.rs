@@ -27,7 +27,11 @@ pub(crate) fn sweep(
     let n = state.len();
     // Grains by volume (ties by index), for the partner window.
     let mut by_volume: Vec<usize> = (0..n).collect();
-    by_volume.sort_by(|&a, &b| state.volumes[a].total_cmp(&state.volumes[b]).then(a.cmp(&b)));
+    by_volume.sort_by(|&a, &b| {
+        state.volumes[a]
+            .total_cmp(&state.volumes[b])
+            .then(a.cmp(&b))
+    });
     let sorted: Vec<f64> = by_volume.iter().map(|&g| state.volumes[g]).collect();
     // Wrapped (periodic) or inside the box (walled): the octree's shifts refer to them.
     state.wrap();

@@ -364,13 +364,18 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
         params.unjam = (Unjam::NAMES.iter())
             .find(|(name, _)| name == v.get_ref())
             .map(|&(_, u)| u)
-            .ok_or_else(|| {
-                src.invalid_at(
-                    "packing.unjam",
-                    v,
-                    "must be \"none\", \"swap\", \"shake\" or \"swap+shake\"",
-                )
-            })?;
+            .ok_or_else(|| src.invalid_at("packing.unjam", v, "must be \"none\" or \"swap\""))?;
+        if params.unjam != Unjam::None && params.effort < MIN_CYCLE_EFFORT {
+            return Err(src.invalid_at(
+                "packing.unjam",
+                v,
+                format!(
+                    "acts between effort's recompression cycles: needs packing.effort ≥ \
+                     {MIN_CYCLE_EFFORT} (it is {})",
+                    params.effort
+                ),
+            ));
+        }
     }
     Ok(params)
 }
@@ -380,3 +385,5 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
 const MIN_EFFORT: f64 = 0.1;
 /// See [`MIN_EFFORT`].
 const MAX_EFFORT: f64 = 100.0;
+/// The least `packing.effort` with a recompression cycle, which `packing.unjam` needs.
+const MIN_CYCLE_EFFORT: f64 = 2.0;
