@@ -69,8 +69,17 @@ pub(crate) fn sweep(
         attempts += 1;
         let (a, b) = (place[i], place[j]);
         let skip = [a, b];
-        let before = look.energy(i, a, skip, &occupant)? + look.energy(j, b, skip, &occupant)?;
-        let after = look.energy(i, b, skip, &occupant)? + look.energy(j, a, skip, &occupant)?;
+        let inf = f64::INFINITY;
+        let before =
+            look.energy(i, a, skip, &occupant, inf)? + look.energy(j, b, skip, &occupant, inf)?;
+        // Most swaps are refused: the sums stop as soon as they reach `before` (every
+        // term is positive, so the full sums would reach it too).
+        let first = look.energy(i, b, skip, &occupant, before)?;
+        let after = if first < before {
+            first + look.energy(j, a, skip, &occupant, before - first)?
+        } else {
+            first
+        };
         if after < before {
             occupant.swap(a, b);
             place.swap(i, j);
@@ -102,13 +111,14 @@ impl Look<'_> {
     /// The overlap energy of grain `g` at position `p` with the grains at every other
     /// position but those of `skip` (the pair being swapped: their own contact is the
     /// same after the swap, the contact function being even in the centres' offset),
-    /// and with the walls.
+    /// and with the walls; ∞ as soon as the sum reaches `cap`.
     fn energy(
         &mut self,
         g: usize,
         p: usize,
         skip: [usize; 2],
         occupant: &[usize],
+        cap: f64,
     ) -> Result<f64, PackError> {
         let s = &*self.state;
         let big_s = self.big_s;
@@ -141,6 +151,9 @@ impl Look<'_> {
             if mu < 1.0 {
                 let reach = big_s * (eg.inscribed_radius() + ek.inscribed_radius());
                 energy += (reach * (1.0 - mu)).powi(2);
+                if energy >= cap {
+                    return Ok(f64::INFINITY);
+                }
             }
         }
         if s.domain.boundary == Boundary::Reflecting {
