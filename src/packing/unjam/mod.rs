@@ -13,7 +13,7 @@
 //! frozen ellipsoids a swap is the one way to put a differently oriented grain where
 //! another stood.
 //!
-//! On lognormal spheres (σ = 0.25) the cycle then jams near 0.683 instead of 0.662,
+//! On lognormal spheres (σ = 0.25) the cycle then jams at 0.682–0.683 instead of 0.662,
 //! and frozen spheroids of aspect 1.5 near 0.646–0.649 instead of 0.632–0.634
 //! (BENCHMARKS.md, "third round"). Equal spheres, and grains whose volumes differ by
 //! more than [`SWAP_VOLUME_RATIO`], have nothing to swap: the moves then cost one
@@ -41,10 +41,9 @@ const UNJAM_STREAM: u64 = 2;
 /// Most rounds of swap sweeps before a cycle's relaxation, each but the last followed
 /// by a relaxation of [`SWAP_RELAX_STEPS`] at the recompressed scale (swap Monte Carlo
 /// alternates swaps with ordinary moves). The rounds end earlier, as soon as a round
-/// keeps no swap: on 500 frozen spheroids and kanapy's frozen grains that happened
-/// before 32 rounds on five runs out of six (64 allowed gave the same results), and 4,
-/// 8, 16, 32 rounds reached 0.636–0.638, 0.637–0.641, 0.644–0.645, 0.646–0.649 on
-/// the spheroids (BENCHMARKS.md, "third round").
+/// keeps no swap: on 500 frozen spheroids (seeds 1–3) allowing 64 rounds gave the
+/// same results as 32, and 4, 8, 16, 32 rounds reached 0.637–0.638, 0.640–0.641,
+/// 0.644–0.645, 0.646–0.649 (BENCHMARKS.md, "third round").
 pub(crate) const SWAP_ROUNDS: usize = 32;
 
 /// Most sweeps (one swap attempt per grain each) in a round; a sweep that keeps no
