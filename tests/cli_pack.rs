@@ -349,7 +349,13 @@ fn check_written_packing(out: &Path, periodic: bool) -> (Vec<Grain>, Value) {
     if rotation["mode"] == "none" {
         assert_eq!(largest, 0.0, "{rotation}");
     }
-    for key in ["steps", "fire_steps", "list_builds", "pairs_tested"] {
+    for key in [
+        "steps",
+        "fire_steps",
+        "list_builds",
+        "pairs_tested",
+        "swaps",
+    ] {
         assert!(summary["counters"][key].is_u64(), "{key}");
     }
     (grains, summary)

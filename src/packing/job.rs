@@ -39,6 +39,8 @@ pub struct Counters {
     pub narrow_phase: Duration,
     /// Time in the response (forces, moves).
     pub response: Duration,
+    /// Swaps of grains kept by the unjamming moves (`packing.unjam = "swap"`).
+    pub swaps: u64,
 }
 
 /// The outcome of [`pack`](super::pack).

@@ -46,6 +46,7 @@ mod job;
 mod neighbours;
 mod state;
 mod tuning;
+mod unjam;
 mod verify;
 
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
@@ -121,6 +122,7 @@ pub fn pack(
     let mut stuck = f64::INFINITY;
     let mut s = 1.0;
     let mut cycles_left = recompression_cycles(params.effort);
+    let mut unjammer = unjam::Unjammer::new(params.unjam, seed);
     let reason = loop {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if left == 0 {
@@ -165,6 +167,9 @@ pub fn pack(
             cycles_left -= 1;
             stuck = f64::INFINITY;
             s = low * (1.0 + RECOMPRESSION);
+            // Issue 16, part B: unjamming moves (`packing.unjam`) before the relaxation
+            // at the recompressed scale.
+            unjammer.before_recompression(&mut state, &mut fire, &mut run, &protocol, s)?;
             continue;
         }
         s = 0.5 * (low + stuck);
@@ -195,7 +200,7 @@ pub fn pack(
 /// rather than settling back into the jammed state. On 10 000 equal spheres (seed 1,
 /// three cycles) 0.1 reached 0.6451 and 0.2 0.6452, 0.02 and 0.05 less on 500
 /// (BENCHMARKS.md, "Effort").
-const RECOMPRESSION: f64 = 0.1;
+pub(crate) const RECOMPRESSION: f64 = 0.1;
 
 /// The step budget of a relaxation below the target scale:
 /// [`ProtocolParams::trial_steps`] times `effort` up to 1 (more buys no density: see

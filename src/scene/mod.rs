@@ -50,7 +50,7 @@ pub use output::{
     DEFAULT_VTK_RESOLUTION, MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
     MIN_VTK_RESOLUTION,
 };
-pub use params::{PackingParams, Rotation};
+pub use params::{PackingParams, Rotation, Unjam};
 pub use shape::{triaxial_semi_axes, ThirdRatio, Triaxial};
 use std::f64::consts::PI;
 

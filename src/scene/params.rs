@@ -27,6 +27,9 @@ pub struct PackingParams {
     /// kept (about `effort` times the time). Higher is denser and slower.
     /// In `[0.1, 100]`; default 1.
     pub effort: f64,
+    /// Unjamming moves before each of effort's recompression cycles (so only with
+    /// `effort` ≥ 2): see [`Unjam`]. Default [`Unjam::None`].
+    pub unjam: Unjam,
 }
 
 impl Default for PackingParams {
@@ -38,6 +41,7 @@ impl Default for PackingParams {
             max_turn: std::f64::consts::PI,
             restore: true,
             effort: 1.0,
+            unjam: Unjam::None,
         }
     }
 }
@@ -64,6 +68,30 @@ impl Rotation {
             Self::None => "none",
             Self::Free => "free",
             Self::Axis => "axis",
+        }
+    }
+}
+
+/// Unjamming moves between effort's recompression cycles (`packing.unjam`; the loop's
+/// `unjam` module documents them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unjam {
+    /// None (`"none"`).
+    None,
+    /// Grains of similar volume swap positions where that lowers the overlap energy of
+    /// the recompressed packing, each keeping its orientation (`"swap"`).
+    Swap,
+}
+
+impl Unjam {
+    /// Every value, as the scene file names it.
+    pub const NAMES: [(&'static str, Self); 2] = [("none", Self::None), ("swap", Self::Swap)];
+
+    /// The value as the scene file and `summary.json` name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Swap => "swap",
         }
     }
 }

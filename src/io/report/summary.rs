@@ -93,6 +93,8 @@ pub struct CounterSummary {
     pub list_builds: u64,
     /// Candidate pairs tested by the narrow phase.
     pub pairs_tested: u64,
+    /// Swaps of grains kept by the unjamming moves (`packing.unjam = "swap"`).
+    pub swaps: u64,
 }
 
 impl<'a> Summary<'a> {
@@ -144,6 +146,7 @@ impl<'a> Summary<'a> {
                 fire_steps: c.fire_steps,
                 list_builds: c.list_builds,
                 pairs_tested: c.pairs_tested,
+                swaps: c.swaps,
             },
             rotation: &statistics.rotation,
             phases: &statistics.phases,

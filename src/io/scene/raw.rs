@@ -209,6 +209,7 @@ pub(crate) struct RawPacking {
     pub max_turn: Opt<f64>,
     pub restore: Opt<bool>,
     pub effort: Opt<f64>,
+    pub unjam: Opt<String>,
 }
 
 /// `[output]`.

@@ -17,7 +17,7 @@ use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
     mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase,
-    PhaseTexture, Rotation, Scene, MAX_GRAINS, MAX_TARGET_FRACTION,
+    PhaseTexture, Rotation, Scene, Unjam, MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -360,6 +360,23 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
     if let Some(v) = &raw.restore {
         params.restore = *v.get_ref();
     }
+    if let Some(v) = &raw.unjam {
+        params.unjam = (Unjam::NAMES.iter())
+            .find(|(name, _)| name == v.get_ref())
+            .map(|&(_, u)| u)
+            .ok_or_else(|| src.invalid_at("packing.unjam", v, "must be \"none\" or \"swap\""))?;
+        if params.unjam != Unjam::None && params.effort < MIN_CYCLE_EFFORT {
+            return Err(src.invalid_at(
+                "packing.unjam",
+                v,
+                format!(
+                    "acts between effort's recompression cycles: needs packing.effort ≥ \
+                     {MIN_CYCLE_EFFORT} (it is {})",
+                    params.effort
+                ),
+            ));
+        }
+    }
     Ok(params)
 }
 
@@ -368,3 +385,5 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
 const MIN_EFFORT: f64 = 0.1;
 /// See [`MIN_EFFORT`].
 const MAX_EFFORT: f64 = 100.0;
+/// The least `packing.effort` with a recompression cycle, which `packing.unjam` needs.
+const MIN_CYCLE_EFFORT: f64 = 2.0;

@@ -1,0 +1,127 @@
+//! Unjamming moves between effort's recompression cycles (`packing.unjam`): a way past
+//! a premature jam that the compress-and-relax protocol alone does not take.
+//!
+//! Once the bisection has found a jamming point and effort asks for another cycle, the
+//! loop compresses the state by [`RECOMPRESSION`](super::RECOMPRESSION) and relaxes it
+//! there. Before that relaxation, with `unjam = "swap"`, grains of similar volume but
+//! different size, shape or orientation exchange their positions wherever that lowers
+//! the overlap energy at the compressed scale, in rounds of sweeps separated by short
+//! relaxations: swap Monte Carlo at zero temperature (Grigera and Parisi, *Phys. Rev.
+//! E* 63, 045102, 2001; Ninarello, Berthier and Coslovich, *Phys. Rev. X* 7, 021039,
+//! 2017, where swaps reach far denser polydisperse packings than plain dynamics). Each
+//! grain keeps its own orientation, so frozen orientations stay exactly as drawn: for
+//! frozen ellipsoids a swap is the one way to put a differently oriented grain where
+//! another stood.
+//!
+//! On lognormal spheres (σ = 0.25) the cycle then jams at 0.682–0.683 instead of 0.662,
+//! and frozen spheroids of aspect 1.5 near 0.646–0.649 instead of 0.632–0.634
+//! (BENCHMARKS.md, "third round"). Equal spheres, and grains whose volumes differ by
+//! more than [`SWAP_VOLUME_RATIO`], have nothing to swap: the moves then cost one
+//! sweep of comparisons and change nothing. Random shaking of the jammed state (thermal
+//! noise at a fixed scale, then a quench) was measured too and bought nothing.
+//!
+//! The moves only change the state a cycle starts from: the densest clean state of all
+//! cycles is kept by the loop, so the fraction reached never falls below that of the
+//! first search. They draw from their own random stream ([`UNJAM_STREAM`]) and run
+//! in a fixed order, so the result is the same for a seed whatever the thread count.
+
+mod swap;
+
+use super::fire::{Context, Fire};
+use super::state::State;
+use super::{PackError, ProtocolParams};
+use crate::scene::Unjam;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+/// The random stream of the moves (the scene's sampling uses stream 0, the starting
+/// positions stream 1).
+const UNJAM_STREAM: u64 = 2;
+
+/// Most rounds of swap sweeps before a cycle's relaxation, each but the last followed
+/// by a relaxation of [`SWAP_RELAX_STEPS`] at the recompressed scale (swap Monte Carlo
+/// alternates swaps with ordinary moves). The rounds end earlier, as soon as a round
+/// keeps no swap: on 500 frozen spheroids (seeds 1–3) allowing 64 rounds gave the
+/// same results as 32, and 4, 8, 16, 32 rounds reached 0.637–0.638, 0.640–0.641,
+/// 0.644–0.645, 0.646–0.649 (BENCHMARKS.md, "third round").
+pub(crate) const SWAP_ROUNDS: usize = 32;
+
+/// Most sweeps (one swap attempt per grain each) in a round; a sweep that keeps no
+/// swap ends the round.
+pub(crate) const SWAP_SWEEPS: usize = 4;
+
+/// FIRE steps of the relaxation between two rounds of swaps: a quarter of a trial's
+/// default budget, for the packing to settle around the swapped grains. Sixteen such
+/// relaxations without swaps changed nothing (control, BENCHMARKS.md): the density
+/// comes from the swaps.
+pub(crate) const SWAP_RELAX_STEPS: u64 = 250;
+
+/// Grains swap only with grains whose volume is within this factor of theirs
+/// ("similar-size" swaps): a far larger grain never fits where a small one stood, and
+/// the window keeps the attempts where they may pay. 2 spans a lognormal size law of
+/// σ = 0.25 over about a standard deviation either side.
+pub(crate) const SWAP_VOLUME_RATIO: f64 = 2.0;
+
+/// The moves of one packing: the mode and its random stream.
+pub(crate) struct Unjammer {
+    mode: Unjam,
+    rng: ChaCha8Rng,
+}
+
+impl Unjammer {
+    pub fn new(mode: Unjam, seed: u64) -> Self {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(UNJAM_STREAM);
+        Self { mode, rng }
+    }
+
+    /// The moves before a recompression cycle: the state is about to be relaxed at
+    /// scale `next`. Counts the swaps kept in the counters.
+    pub fn before_recompression(
+        &mut self,
+        state: &mut State,
+        fire: &mut Fire,
+        run: &mut Context<'_>,
+        protocol: &ProtocolParams,
+        next: f64,
+    ) -> Result<(), PackError> {
+        if self.mode != Unjam::Swap {
+            return Ok(());
+        }
+        let big_s = next * (1.0 + protocol.margin);
+        for round in 0..SWAP_ROUNDS {
+            let kept = swap_round(state, big_s, &mut self.rng)?;
+            run.counters.swaps += kept;
+            if kept == 0 {
+                break;
+            }
+            if round + 1 < SWAP_ROUNDS {
+                // The loop's own relaxation follows the last round.
+                run.counters.steps += 1;
+                fire.relax(state, run, next, big_s, SWAP_RELAX_STEPS)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Up to [`SWAP_SWEEPS`] sweeps at scale `big_s`, until one keeps no swap; returns the
+/// swaps kept.
+pub(crate) fn swap_round(
+    state: &mut State,
+    big_s: f64,
+    rng: &mut ChaCha8Rng,
+) -> Result<u64, PackError> {
+    let mut kept = 0;
+    for _ in 0..SWAP_SWEEPS {
+        let (_, swaps) = swap::sweep(state, big_s, rng)?;
+        kept += swaps;
+        if swaps == 0 {
+            break;
+        }
+    }
+    Ok(kept)
+}
+
+#[cfg(test)]
+mod tests;

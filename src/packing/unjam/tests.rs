@@ -1,0 +1,172 @@
+//! The swap moves on small scenes: alone (energy, positions, orientations) and in the
+//! loop (clean, frozen, deterministic, never less dense).
+
+use super::swap::sweep;
+use super::*;
+use crate::packing::forces::Forces;
+use crate::packing::neighbours::Neighbours;
+use crate::packing::{pack, Job, NeighbourParams, Packing, StopReason, Tuning};
+use crate::scene::{GrainSpec, Scene};
+use rand::Rng;
+use std::sync::atomic::AtomicBool;
+
+/// 150 frozen spheroids of aspect 1.5 with lognormal sizes, random orientations, asked
+/// to fill about 0.74 of a periodic cube: more than they reach, so the loop jams.
+const POLY_SPHEROIDS: &str = r#"
+seed = 5
+grains = 150
+[box]
+size = [10.4, 10.4, 10.4]
+[[phase]]
+size = { distribution = "lognormal", sigma = 0.25, scale = 2.0, min = 1.0, max = 4.0 }
+aspect_ratio = { distribution = "constant", value = 1.5 }
+"#;
+
+/// 150 equal spheroids of aspect 1.5, frozen in random orientations, asked 0.75
+/// (the loop's own tests' scene): their swaps exchange orientations between places.
+const EQUAL_SPHEROIDS: &str = r#"
+seed = 9
+grains = 150
+[box]
+size = [9.35, 9.35, 9.35]
+[[phase]]
+size = { distribution = "constant", value = 2.0 }
+aspect_ratio = { distribution = "constant", value = 1.5 }
+"#;
+
+/// 100 equal spheres.
+const EQUAL_SPHERES: &str = r#"
+seed = 5
+grains = 100
+[box]
+size = [8.3, 8.3, 8.3]
+[[phase]]
+size = { distribution = "constant", value = 2.0 }
+"#;
+
+fn drawn(text: &str) -> (Scene, Vec<GrainSpec>) {
+    let scene = Scene::from_str(text, "test.toml").unwrap();
+    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+    (scene, specs)
+}
+
+/// The drawn grains of `text` at random positions.
+fn scattered(text: &str) -> State {
+    let (scene, specs) = drawn(text);
+    let mut state = State::new(&specs, &scene.domain).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let size = scene.domain.size;
+    for c in &mut state.centres {
+        *c = std::array::from_fn(|k| rng.random::<f64>() * size[k]);
+    }
+    state
+}
+
+/// The overlap energy of the state at scale `big_s`, from the loop's own forces.
+fn energy(state: &mut State, big_s: f64) -> f64 {
+    let mut neighbours = Neighbours::new(NeighbourParams::default());
+    neighbours.update(state, big_s).unwrap();
+    let mut forces = Forces::default();
+    forces.evaluate(state, &neighbours.pairs, neighbours.builds, big_s, false);
+    forces.energy
+}
+
+fn sorted_places(state: &State) -> Vec<[f64; 3]> {
+    let mut places = state.centres.clone();
+    places.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    places
+}
+
+/// A sweep keeps only swaps that lower the energy (so the total falls), moves grains
+/// only onto one another's places, and turns none.
+#[test]
+fn a_sweep_lowers_the_energy_and_only_exchanges_places() {
+    let mut state = scattered(POLY_SPHEROIDS);
+    let big_s = 1.0;
+    state.wrap();
+    let (places, turns) = (sorted_places(&state), state.quaternions.clone());
+    let before = energy(&mut state, big_s);
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let (attempts, swaps) = sweep(&mut state, big_s, &mut rng).unwrap();
+    assert!(attempts > 100, "{attempts}");
+    assert!(swaps > 0, "no swap kept of {attempts}");
+    let after = energy(&mut state, big_s);
+    assert!(after < before, "{after} ≥ {before}");
+    assert_eq!(sorted_places(&state), places);
+    assert_eq!(state.quaternions, turns);
+    // Sweeps again until one keeps no swap: the energy never rises.
+    let mut last = after;
+    for _ in 0..20 {
+        let (_, swaps) = sweep(&mut state, big_s, &mut rng).unwrap();
+        let now = energy(&mut state, big_s);
+        assert!(now <= last, "{now} > {last}");
+        last = now;
+        if swaps == 0 {
+            break;
+        }
+    }
+}
+
+/// Equal spheres have nothing to swap: no attempt, nothing moved.
+#[test]
+fn equal_spheres_have_nothing_to_swap() {
+    let mut state = scattered(EQUAL_SPHERES);
+    state.wrap();
+    let centres = state.centres.clone();
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    assert_eq!(sweep(&mut state, 1.0, &mut rng).unwrap(), (0, 0));
+    assert_eq!(state.centres, centres);
+}
+
+fn pack_on(threads: usize, scene: &Scene, specs: &[GrainSpec]) -> Packing {
+    let tuning = Tuning::default();
+    let job = Job {
+        specs,
+        domain: &scene.domain,
+        params: &scene.packing,
+        tuning: &tuning,
+        seed: scene.seed,
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| pack(&job, &AtomicBool::new(false), &mut |_| {}))
+        .unwrap()
+}
+
+/// In the loop (effort 2, `unjam = "swap"`): swaps are kept, the result is clean and
+/// at least as dense as the first search (effort 1), the frozen orientations are
+/// exactly as drawn, and one and two threads give the same grains bit for bit.
+#[test]
+fn swaps_in_the_loop_keep_it_clean_frozen_deterministic_and_never_less_dense() {
+    let (mut scene, specs) = drawn(EQUAL_SPHEROIDS);
+    let first = pack_on(1, &scene, &specs);
+    scene.packing.effort = 2.0;
+    scene.packing.unjam = Unjam::Swap;
+    let one = pack_on(1, &scene, &specs);
+    let two = pack_on(2, &scene, &specs);
+    assert_eq!(one.stop, StopReason::Jammed);
+    assert!(
+        one.counters.swaps > 0,
+        "{} {} {:?}",
+        first.fraction,
+        one.fraction,
+        one.counters
+    );
+    assert!(one.verification.is_clean(), "{:?}", one.verification);
+    assert!(
+        one.fraction >= first.fraction,
+        "{} < {}",
+        one.fraction,
+        first.fraction
+    );
+    for (g, s) in one.grains.iter().zip(&specs) {
+        assert_eq!(g.quaternion, s.quaternion);
+    }
+    assert_eq!(one.fraction, two.fraction);
+    assert_eq!(one.counters.swaps, two.counters.swaps);
+    for (a, b) in one.grains.iter().zip(&two.grains) {
+        assert_eq!((a.centre, a.quaternion), (b.centre, b.quaternion));
+    }
+}
