@@ -112,6 +112,7 @@ pub fn pack(
         rotation: params.rotation,
         max_turn: params.max_turn,
         contact_gap: protocol.contact_gap,
+        resolution: params.jam_resolution,
         stop,
         progress,
     };
@@ -160,11 +161,9 @@ pub fn pack(
             if cycles_left == 0 {
                 break StopReason::Jammed;
             }
-            // Jammed: compress the current state well past the jamming point and
-            // find it again from there (see `recompression_cycles`).
             cycles_left -= 1;
             stuck = f64::INFINITY;
-            s = low * (1.0 + RECOMPRESSION);
+            s = start_cycle(low);
             continue;
         }
         s = 0.5 * (low + stuck);
@@ -196,6 +195,15 @@ pub fn pack(
 /// three cycles) 0.1 reached 0.6451 and 0.2 0.6452, 0.02 and 0.05 less on 500
 /// (BENCHMARKS.md, "Effort").
 const RECOMPRESSION: f64 = 0.1;
+
+/// The first scale of a recompression cycle, from the jamming point `low` just found:
+/// the current state (the last trial's) is compressed well past it and its jamming
+/// point found again from there (see [`recompression_cycles`]). This is the one place
+/// between cycles: a move that unjams the state (shaking, swaps) belongs here, before
+/// the compression.
+fn start_cycle(low: f64) -> f64 {
+    low * (1.0 + RECOMPRESSION)
+}
 
 /// The step budget of a relaxation below the target scale:
 /// [`ProtocolParams::trial_steps`] times `effort` up to 1 (more buys no density: see
