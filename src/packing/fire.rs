@@ -92,6 +92,11 @@ impl Fire {
         }
     }
 
+    /// Sets the jamming test's window (steps) of the next relaxations.
+    pub fn set_window(&mut self, window: u64) {
+        self.params.window = window.max(1);
+    }
+
     /// Relaxes the state at scale `s`, with the energy taken at `big_s ≥ s` (the
     /// margin makes the last overlaps vanish at `s` before the energy reaches zero).
     pub fn relax(

@@ -135,6 +135,9 @@ pub fn pack(
         } else {
             trial_steps(&protocol, params.effort)
         };
+        if cycles_left < recompression_cycles(params.effort) {
+            fire.set_window((tuning.fire.window as f64 * CYCLE_WINDOW).round() as u64);
+        }
         let outcome = fire.relax(
             &mut state,
             &mut run,
@@ -205,6 +208,16 @@ fn start_cycle(low: f64) -> f64 {
     low * (1.0 + RECOMPRESSION)
 }
 
+/// The jamming test's window in the relaxations of a recompression cycle, as a share
+/// of [`FireParams::window`]: each starts from a state relaxed at a nearby scale, not
+/// from random positions, so FIRE needs no long start and its plateau is recognised
+/// in half the steps. On 500 equal spheres (seeds 1–5, effort 4 and 8) a half window
+/// took 43 % fewer FIRE steps for the same mean density (0.6453 against 0.6454 at
+/// effort 4), so that effort 8 reached 0.6474 in the steps effort 4 took before
+/// (BENCHMARKS.md, "third round"); at effort 1 it would lose 0.0002–0.0006, and is
+/// not used there.
+const CYCLE_WINDOW: f64 = 0.5;
+
 /// The step budget of a relaxation below the target scale:
 /// [`ProtocolParams::trial_steps`] times `effort` up to 1 (more buys no density: see
 /// [`recompression_cycles`]), at least one step.
@@ -212,18 +225,26 @@ fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
     ((protocol.trial_steps as f64 * effort.min(1.0)).ceil() as u64).max(1)
 }
 
-/// The recompression cycles of `effort` (`⌊effort⌋ − 1`, none below 2): once the
-/// bisection has found the jamming point, the state is compressed by
-/// [`RECOMPRESSION`], relaxed, and the jamming point bisected again from there, the
-/// densest clean state of all cycles kept. Each cycle costs about what the first
-/// search did, and each lets the packing rearrange from a denser start than random
-/// positions, which is what raises its jamming point (a jammed packing's density
-/// depends on its history: Chaudhuri, Berthier and Sastry, *Phys. Rev. Lett.* 104,
-/// 165701, 2010). Longer relaxations per trial, instead, bought nothing (0.6406–0.6408
-/// on 10 000 spheres from 0.3 to 10 times the budget).
+/// The recompression cycles of `effort`: `⌊CYCLES_PER_EFFORT · (effort − 1)⌋`, none
+/// below 1.5. Once the bisection has found the jamming point, the state is compressed
+/// by [`RECOMPRESSION`], relaxed, and the jamming point bisected again from there, the
+/// densest clean state of all cycles kept. Each lets the packing rearrange from a
+/// denser start than random positions, which is what raises its jamming point (a
+/// jammed packing's density depends on its history: Chaudhuri, Berthier and Sastry,
+/// *Phys. Rev. Lett.* 104, 165701, 2010). Longer relaxations per trial, instead, bought
+/// nothing (0.6406–0.6408 on 10 000 spheres from 0.3 to 10 times the budget).
 fn recompression_cycles(effort: f64) -> u32 {
-    (effort.floor().max(1.0) - 1.0).min(f64::from(u32::MAX)) as u32
+    (CYCLES_PER_EFFORT * (effort.max(1.0) - 1.0))
+        .floor()
+        .min(f64::from(u32::MAX)) as u32
 }
+
+/// Recompression cycles per unit of `effort` above 1. A cycle (with its half window,
+/// [`CYCLE_WINDOW`]) costs about 0.8 of the search at effort 1 on 10 000 equal
+/// spheres (2 250 FIRE steps against 2 900), so that two per unit keep `effort = E`
+/// at about what it cost when it meant E − 1 cycles of the full window, for more
+/// density (BENCHMARKS.md, "third round").
+const CYCLES_PER_EFFORT: f64 = 2.0;
 
 /// The grains' indices sorted by the Morton code of their centres (10 bits a
 /// coordinate), ties by index.
