@@ -165,6 +165,22 @@ mod tests {
         assert_eq!(jammed_at(|t| t.powf(-0.2), 100_000, 1e-30), None);
     }
 
+    /// The recompression cycles judge with half the window (`CYCLE_WINDOW` in
+    /// `packing/mod.rs`): decays to zero still go on, a plateau is still recognised.
+    #[test]
+    fn half_window_lets_decays_run_and_finds_plateaus() {
+        let half = |e: &dyn Fn(f64) -> f64, steps: u64| {
+            let mut test = JamTest::new(WINDOW / 2, SLOPE, 1e-30, RESOLUTION);
+            (1..=steps).find(|&t| test.step(e(t as f64), 0.0) == Verdict::Jammed)
+        };
+        assert_eq!(half(&|t| (-t / 3000.0).exp(), 100_000), None);
+        assert_eq!(half(&|t| t.powf(-0.2), 100_000), None);
+        assert_eq!(
+            half(&|_| 1.0, 10_000),
+            Some(WINDOW / 2 * MIN_WINDOWS as u64)
+        );
+    }
+
     /// Slow decays in bursts (a plateau, then a drop, as rattlers escape near
     /// jamming) are not cut short while each plateau is shorter than half the steps
     /// before it: here the energy halves at steps 100 · 1.5^k.

@@ -24,10 +24,10 @@
 //!    relaxations slow down without end (critical slowing down), so each trial below
 //!    the target has a budget of [`trial_steps`](ProtocolParams::trial_steps) steps
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
-//!    counts as jammed at that scale. With `effort` ≥ 2, the jammed state is then
+//!    counts as jammed at that scale. With `effort` ≥ 1.5, the jammed state is then
 //!    compressed again well past its jamming point and the search repeated,
-//!    `⌊effort⌋ − 1` times (recompression cycles), keeping the densest clean state:
-//!    more effort buys density for time;
+//!    `⌊2 (effort − 1)⌋` times (recompression cycles, see [`start_cycle`]), keeping
+//!    the densest clean state: more effort buys density for time;
 //! 5. grains that may turn and reached the target are turned back toward their drawn
 //!    orientations (`restore`, a scene parameter): [`restore_steps`](ProtocolParams::restore_steps)
 //!    steps with a pull of stiffness [`restore_stiffness`](ProtocolParams::restore_stiffness)

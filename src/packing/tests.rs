@@ -247,7 +247,7 @@ fn a_plateau_near_clean_is_not_called_jammed_when_it_would_reach_the_target() {
     }
 }
 
-/// Recompression cycles (`effort` ≥ 2) start where the search at effort 1 ended and
+/// Recompression cycles (`effort` ≥ 1.5) start where the search at effort 1 ended and
 /// keep the densest clean state: never less dense, still clean, still jammed below
 /// the target, and the frozen orientations untouched.
 #[test]
@@ -267,4 +267,11 @@ fn recompression_cycles_never_lose_density_and_stay_clean() {
     for (g, s) in three.grains.iter().zip(&specs) {
         assert_eq!(g.quaternion, s.quaternion);
     }
+}
+
+/// `effort` maps to recompression cycles two per unit above 1: none up to 1.5.
+#[test]
+fn effort_counts_two_cycles_per_unit_above_one() {
+    let cycles = [0.3, 1.0, 1.4, 1.5, 2.0, 4.0, 8.0].map(recompression_cycles);
+    assert_eq!(cycles, [0, 0, 0, 1, 2, 6, 14]);
 }
