@@ -26,7 +26,7 @@
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
 //!    counts as jammed at that scale. With `effort` ≥ 1.5, the jammed state is then
 //!    compressed again well past its jamming point and the search repeated,
-//!    `⌊2 (effort − 1)⌋` times (recompression cycles, see [`start_cycle`]), keeping
+//!    `⌊2 (effort − 1)⌋` times (recompression cycles, see `start_cycle`), keeping
 //!    the densest clean state: more effort buys density for time;
 //! 5. grains that may turn and reached the target are turned back toward their drawn
 //!    orientations (`restore`, a scene parameter): [`restore_steps`](ProtocolParams::restore_steps)
@@ -211,11 +211,11 @@ fn start_cycle(low: f64) -> f64 {
 /// The jamming test's window in the relaxations of a recompression cycle, as a share
 /// of [`FireParams::window`]: each starts from a state relaxed at a nearby scale, not
 /// from random positions, so FIRE needs no long start and its plateau is recognised
-/// in half the steps. On 500 equal spheres (seeds 1–5, effort 4 and 8) a half window
-/// took 43 % fewer FIRE steps for the same mean density (0.6453 against 0.6454 at
-/// effort 4), so that effort 8 reached 0.6474 in the steps effort 4 took before
-/// (BENCHMARKS.md, "third round"); at effort 1 it would lose 0.0002–0.0006, and is
-/// not used there.
+/// in half the steps. On 500 equal spheres (seeds 1–5) a cycle then took about half
+/// its FIRE steps, for a mean density within the seeds' spread (three cycles: 0.6446
+/// against 0.6454, 37 % fewer steps), so that seven cycles cost about what three did
+/// and reached 0.6463 (BENCHMARKS.md, "third round"). In the search at effort 1 it
+/// lost 0.0002–0.0006 on the mean and is not used there.
 const CYCLE_WINDOW: f64 = 0.5;
 
 /// The step budget of a relaxation below the target scale:
