@@ -181,6 +181,9 @@ pub fn pack(
     // A jammed state leaves no room to turn back: only a packing that reached its
     // target is turned back.
     if params.restore && run.rotation != Rotation::None && reason == StopReason::TargetReached {
+        // A recompression may have reached the target: the turn back judges with the
+        // full window.
+        fire.set_window(tuning.fire.window);
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if let Some(turned_back) =
             turn_back(&mut state, &mut fire, &mut run, &protocol, &snapshot, left)?
