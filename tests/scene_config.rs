@@ -653,11 +653,11 @@ fn every_shipped_config_loads_and_samples() {
 }
 
 /// `packing.unjam` takes "none" or "swap", and "swap" only with effort's
-/// recompression cycles (effort ≥ 2), which it acts between.
+/// recompression cycles (effort ≥ 1.5), which it acts between.
 #[test]
 fn unjam_takes_none_or_swap_and_needs_recompression_cycles() {
     let scene = Scene::from_str(
-        &with_extra("[packing]\neffort = 2\nunjam = \"swap\""),
+        &with_extra("[packing]\neffort = 1.5\nunjam = \"swap\""),
         "scene.toml",
     )
     .unwrap();
@@ -667,7 +667,7 @@ fn unjam_takes_none_or_swap_and_needs_recompression_cycles() {
         "scene.toml:20:9: packing.unjam = \"shake\": must be \"none\" or \"swap\"",
     );
     assert_starts(
-        &error(&with_extra("[packing]\neffort = 1.5\nunjam = \"swap\"")),
-        "scene.toml:21:9: packing.unjam = \"swap\": acts between effort's recompression cycles: needs packing.effort ≥ 2 (it is 1.5)",
+        &error(&with_extra("[packing]\neffort = 1.4\nunjam = \"swap\"")),
+        "scene.toml:21:9: packing.unjam = \"swap\": acts between effort's recompression cycles: needs packing.effort ≥ 1.5 (it is 1.4)",
     );
 }

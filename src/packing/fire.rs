@@ -26,6 +26,9 @@ pub(crate) struct Context<'a> {
     pub max_turn: f64,
     /// [`ProtocolParams::contact_gap`](super::ProtocolParams::contact_gap).
     pub contact_gap: f64,
+    /// The bisection's relative resolution (`packing.jam_resolution`): the jamming
+    /// test's measure of an overlap that matters.
+    pub resolution: f64,
     pub stop: &'a AtomicBool,
     pub progress: &'a mut dyn FnMut(&Progress),
 }
@@ -47,7 +50,7 @@ pub(crate) enum Outcome {
 /// The integrator's state: velocities (angular ones in length units, `ω × L`) and the
 /// adaptive step.
 pub(crate) struct Fire {
-    params: FireParams,
+    pub(crate) params: FireParams,
     velocity: Vec<[f64; 3]>,
     spin: Vec<[f64; 3]>,
     levers: Vec<f64>,
@@ -89,6 +92,11 @@ impl Fire {
         }
     }
 
+    /// Sets the jamming test's window (steps) of the next relaxations.
+    pub fn set_window(&mut self, window: u64) {
+        self.params.window = window.max(1);
+    }
+
     /// Relaxes the state at scale `s`, with the energy taken at `big_s ≥ s` (the
     /// margin makes the last overlaps vanish at `s` before the energy reaches zero).
     pub fn relax(
@@ -119,7 +127,7 @@ impl Fire {
             .sum::<f64>()
             / n as f64;
         let margin_energy = 4.0 * (big_s - s).powi(2) * mean_rho2;
-        let mut jam = JamTest::new(p.window, p.plateau_slope, margin_energy);
+        let mut jam = JamTest::new(p.window, p.plateau_slope, margin_energy, run.resolution);
         masses(state, &mut self.root_mass);
         for _ in 0..budget {
             if run.stop.load(Ordering::Relaxed) {
@@ -164,7 +172,8 @@ impl Fire {
                 fraction: state.fraction(s),
                 overlaps: forces.overlaps,
             });
-            if jam.step(energy / n as f64) == Verdict::Jammed && self.restore == 0.0 {
+            let overlap = (1.0 - forces.min_mu1 / s).max(0.0);
+            if jam.step(energy / n as f64, overlap) == Verdict::Jammed && self.restore == 0.0 {
                 counters.response += t2.elapsed();
                 return Ok(Outcome::Stuck);
             }

@@ -24,10 +24,10 @@
 //!    relaxations slow down without end (critical slowing down), so each trial below
 //!    the target has a budget of [`trial_steps`](ProtocolParams::trial_steps) steps
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
-//!    counts as jammed at that scale. With `effort` ≥ 2, the jammed state is then
+//!    counts as jammed at that scale. With `effort` ≥ 1.5, the jammed state is then
 //!    compressed again well past its jamming point and the search repeated,
-//!    `⌊effort⌋ − 1` times (recompression cycles), keeping the densest clean state:
-//!    more effort buys density for time;
+//!    `⌊2 (effort − 1)⌋` times (recompression cycles, see `start_cycle`), keeping
+//!    the densest clean state: more effort buys density for time;
 //! 5. grains that may turn and reached the target are turned back toward their drawn
 //!    orientations (`restore`, a scene parameter): [`restore_steps`](ProtocolParams::restore_steps)
 //!    steps with a pull of stiffness [`restore_stiffness`](ProtocolParams::restore_stiffness)
@@ -113,6 +113,7 @@ pub fn pack(
         rotation: params.rotation,
         max_turn: params.max_turn,
         contact_gap: protocol.contact_gap,
+        resolution: params.jam_resolution,
         stop,
         progress,
     };
@@ -136,6 +137,9 @@ pub fn pack(
         } else {
             trial_steps(&protocol, params.effort)
         };
+        if cycles_left < recompression_cycles(params.effort) {
+            fire.set_window((tuning.fire.window as f64 * CYCLE_WINDOW).round() as u64);
+        }
         let outcome = fire.relax(
             &mut state,
             &mut run,
@@ -162,13 +166,11 @@ pub fn pack(
             if cycles_left == 0 {
                 break StopReason::Jammed;
             }
-            // Jammed: compress the current state well past the jamming point and
-            // find it again from there (see `recompression_cycles`).
             cycles_left -= 1;
             stuck = f64::INFINITY;
-            s = low * (1.0 + RECOMPRESSION);
-            // Issue 16, part B: unjamming moves (`packing.unjam`) before the relaxation
-            // at the recompressed scale.
+            s = start_cycle(low);
+            // Unjamming moves (`packing.unjam`, module `unjam`) at the recompressed
+            // scale, before the cycle's first relaxation.
             unjammer.before_recompression(&mut state, &mut fire, &mut run, &protocol, s)?;
             continue;
         }
@@ -184,6 +186,9 @@ pub fn pack(
     // A jammed state leaves no room to turn back: only a packing that reached its
     // target is turned back.
     if params.restore && run.rotation != Rotation::None && reason == StopReason::TargetReached {
+        // A recompression may have reached the target: the turn back judges with the
+        // full window.
+        fire.set_window(tuning.fire.window);
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if let Some(turned_back) =
             turn_back(&mut state, &mut fire, &mut run, &protocol, &snapshot, left)?
@@ -202,6 +207,24 @@ pub fn pack(
 /// (BENCHMARKS.md, "Effort").
 pub(crate) const RECOMPRESSION: f64 = 0.1;
 
+/// The first scale of a recompression cycle, from the jamming point `low` just found:
+/// the current state (the last trial's) is compressed well past it and its jamming
+/// point found again from there (see [`recompression_cycles`]). The unjamming moves
+/// (module `unjam`) follow, at the scale returned.
+fn start_cycle(low: f64) -> f64 {
+    low * (1.0 + RECOMPRESSION)
+}
+
+/// The jamming test's window in the relaxations of a recompression cycle, as a share
+/// of [`FireParams::window`]: each starts from a state relaxed at a nearby scale, not
+/// from random positions, so FIRE needs no long start and its plateau is recognised
+/// in half the steps. On 500 equal spheres (seeds 1–5) a cycle then took about half
+/// its FIRE steps, for a mean density within the seeds' spread (three cycles: 0.6446
+/// against 0.6454, 37 % fewer steps), so that seven cycles cost about what three did
+/// and reached 0.6463 (BENCHMARKS.md, "third round"). In the search at effort 1 it
+/// lost 0.0002–0.0006 on the mean and is not used there.
+const CYCLE_WINDOW: f64 = 0.5;
+
 /// The step budget of a relaxation below the target scale:
 /// [`ProtocolParams::trial_steps`] times `effort` up to 1 (more buys no density: see
 /// [`recompression_cycles`]), at least one step.
@@ -209,18 +232,29 @@ fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
     ((protocol.trial_steps as f64 * effort.min(1.0)).ceil() as u64).max(1)
 }
 
-/// The recompression cycles of `effort` (`⌊effort⌋ − 1`, none below 2): once the
-/// bisection has found the jamming point, the state is compressed by
-/// [`RECOMPRESSION`], relaxed, and the jamming point bisected again from there, the
-/// densest clean state of all cycles kept. Each cycle costs about what the first
-/// search did, and each lets the packing rearrange from a denser start than random
-/// positions, which is what raises its jamming point (a jammed packing's density
-/// depends on its history: Chaudhuri, Berthier and Sastry, *Phys. Rev. Lett.* 104,
-/// 165701, 2010). Longer relaxations per trial, instead, bought nothing (0.6406–0.6408
-/// on 10 000 spheres from 0.3 to 10 times the budget).
+/// The recompression cycles of `effort`: `⌊CYCLES_PER_EFFORT · (effort − 1)⌋`, none
+/// below 1.5. Once the bisection has found the jamming point, the state is compressed
+/// by [`RECOMPRESSION`], relaxed, and the jamming point bisected again from there, the
+/// densest clean state of all cycles kept. Each lets the packing rearrange from a
+/// denser start than random positions, which is what raises its jamming point (a
+/// jammed packing's density depends on its history: Chaudhuri, Berthier and Sastry,
+/// *Phys. Rev. Lett.* 104, 165701, 2010). Longer relaxations per trial, instead, bought
+/// nothing (0.6406–0.6408 on 10 000 spheres from 0.3 to 10 times the budget).
 fn recompression_cycles(effort: f64) -> u32 {
-    (effort.floor().max(1.0) - 1.0).min(f64::from(u32::MAX)) as u32
+    (CYCLES_PER_EFFORT * (effort.max(1.0) - 1.0))
+        .floor()
+        .min(f64::from(u32::MAX)) as u32
 }
+
+/// Recompression cycles per unit of `effort` above 1. A cycle (with its half window,
+/// [`CYCLE_WINDOW`]) costs about 0.8 of the search at effort 1 on 10 000 equal
+/// spheres (2 250 FIRE steps against 2 900), so that two per unit keep `effort = E`
+/// at about what it cost when it meant E − 1 cycles of the full window, for more
+/// density (BENCHMARKS.md, "third round").
+const CYCLES_PER_EFFORT: f64 = 2.0;
+
+/// The least `effort` with a recompression cycle (and so with unjamming moves).
+pub const MIN_CYCLE_EFFORT: f64 = 1.0 + 1.0 / CYCLES_PER_EFFORT;
 
 /// The grains' indices sorted by the Morton code of their centres (10 bits a
 /// coordinate), ties by index.

@@ -9,7 +9,7 @@ pub struct PackingParams {
     pub max_steps: u64,
     /// When the target cannot be reached, the loop bisects the scale between the best
     /// overlap-free one and the smallest jammed one until they are this close
-    /// (relative). In `(0, 0.1]`; default 10⁻³ (0.3 % of packing fraction).
+    /// (relative). In `(0, 0.1]`; default 5 · 10⁻⁴ (0.15 % of packing fraction).
     pub jam_resolution: f64,
     /// Whether and how grains may turn while packing. Default [`Rotation::None`]:
     /// orientations stay as drawn, as the scene's statistics ask.
@@ -22,13 +22,14 @@ pub struct PackingParams {
     pub restore: bool,
     /// How much work the loop may spend when the target cannot be reached: below 1,
     /// each relaxation below the target may take `effort` times the default budget of
-    /// steps before it counts as jammed; from 2 on, the jammed packing is compressed
-    /// again and its jamming point searched anew `⌊effort⌋ − 1` times, the densest
-    /// kept (about `effort` times the time). Higher is denser and slower.
+    /// steps before it counts as jammed; from 1.5 on, the jammed packing is compressed
+    /// again and its jamming point searched anew `⌊2 (effort − 1)⌋` times, the
+    /// densest kept (each about 0.8 of the time at effort 1). Higher is denser and
+    /// slower.
     /// In `[0.1, 100]`; default 1.
     pub effort: f64,
     /// Unjamming moves before each of effort's recompression cycles (so only with
-    /// `effort` ≥ 2): see [`Unjam`]. Default [`Unjam::None`].
+    /// `effort` ≥ 1.5): see [`Unjam`]. Default [`Unjam::None`].
     pub unjam: Unjam,
 }
 
@@ -36,7 +37,7 @@ impl Default for PackingParams {
     fn default() -> Self {
         Self {
             max_steps: 100_000,
-            jam_resolution: 1e-3,
+            jam_resolution: 5e-4,
             rotation: Rotation::None,
             max_turn: std::f64::consts::PI,
             restore: true,

@@ -365,13 +365,14 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
             .find(|(name, _)| name == v.get_ref())
             .map(|&(_, u)| u)
             .ok_or_else(|| src.invalid_at("packing.unjam", v, "must be \"none\" or \"swap\""))?;
-        if params.unjam != Unjam::None && params.effort < MIN_CYCLE_EFFORT {
+        if params.unjam != Unjam::None && params.effort < crate::packing::MIN_CYCLE_EFFORT {
             return Err(src.invalid_at(
                 "packing.unjam",
                 v,
                 format!(
                     "acts between effort's recompression cycles: needs packing.effort ≥ \
-                     {MIN_CYCLE_EFFORT} (it is {})",
+                     {} (it is {})",
+                    crate::packing::MIN_CYCLE_EFFORT,
                     params.effort
                 ),
             ));
@@ -385,5 +386,3 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
 const MIN_EFFORT: f64 = 0.1;
 /// See [`MIN_EFFORT`].
 const MAX_EFFORT: f64 = 100.0;
-/// The least `packing.effort` with a recompression cycle, which `packing.unjam` needs.
-const MIN_CYCLE_EFFORT: f64 = 2.0;
