@@ -29,7 +29,8 @@ pub struct PackingParams {
     /// In `[0.1, 100]`; default 1.
     pub effort: f64,
     /// Unjamming moves before each of effort's recompression cycles (so only with
-    /// `effort` ≥ 1.5): see [`Unjam`]. Default [`Unjam::None`].
+    /// `effort` ≥ 1.5): see [`Unjam`]. Default [`Unjam::Swap`]: at next to no cost where
+    /// there is nothing to swap, much denser where grains differ.
     pub unjam: Unjam,
 }
 
@@ -42,7 +43,7 @@ impl Default for PackingParams {
             max_turn: std::f64::consts::PI,
             restore: true,
             effort: 1.0,
-            unjam: Unjam::None,
+            unjam: Unjam::Swap,
         }
     }
 }
