@@ -6,7 +6,7 @@ use crate::scene::{PackingParams, Rotation, Scene};
 
 /// 150 spheroids of aspect ratio 1.5 asked to fill 0.75 of a periodic cube: more than
 /// any random packing holds, so the loop runs until it jams.
-const DENSE_SPHEROIDS: &str = r#"
+pub(super) const DENSE_SPHEROIDS: &str = r#"
 seed = 9
 grains = 150
 [box]

@@ -24,15 +24,7 @@ aspect_ratio = { distribution = "constant", value = 1.5 }
 
 /// 150 equal spheroids of aspect 1.5, frozen in random orientations, asked 0.75
 /// (the loop's own tests' scene): their swaps exchange orientations between places.
-const EQUAL_SPHEROIDS: &str = r#"
-seed = 9
-grains = 150
-[box]
-size = [9.35, 9.35, 9.35]
-[[phase]]
-size = { distribution = "constant", value = 2.0 }
-aspect_ratio = { distribution = "constant", value = 1.5 }
-"#;
+const EQUAL_SPHEROIDS: &str = crate::packing::tests::DENSE_SPHEROIDS;
 
 /// 100 equal spheres.
 const EQUAL_SPHERES: &str = r#"
