@@ -77,7 +77,17 @@ impl Eval {
 /// failure here means rounding at the edge of [`MIN_RELATIVE_PIVOT`](super::MIN_RELATIVE_PIVOT).
 #[inline(always)]
 pub(crate) fn factor_at(lambda: f64, q1: &Sym3, q2: &Sym3) -> Result<(Sym3, Ldl), ContactError> {
-    let m = 1.0 - lambda;
+    factor_between(1.0 - lambda, lambda, q1, q2)
+}
+
+/// [`factor_at`] with `m = 1 − λ` given, for a λ so near 1 that `1.0 − λ` has lost it.
+#[inline(always)]
+pub(crate) fn factor_between(
+    m: f64,
+    lambda: f64,
+    q1: &Sym3,
+    q2: &Sym3,
+) -> Result<(Sym3, Ldl), ContactError> {
     let q: Sym3 = std::array::from_fn(|k| m * q1[k] + lambda * q2[k]);
     let ldl = Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
         what: "(1−λ)q1 + λq2",

@@ -1,6 +1,7 @@
 //! Where and along which normal two ellipsoids touch once scaled by μ, and how far apart
 //! they are.
 
+use super::direct::factor_between;
 use super::ldl::Ldl;
 use super::perram_wertheim::{lambda_and_complement, rank};
 use super::scale::{exponent, pow2};
@@ -84,19 +85,12 @@ fn geometry_from(
     let (point, s) = match limit {
         Some(found) => found,
         None => {
+            let (_, ldl) = factor_between(m, lambda, q1, q2)?;
+            let s = ldl.solve(r12);
             // Near an end (1−λ)Q1 is formed first: Q1 s alone may overflow when 1 − λ
             // is tiny. Elsewhere as before, so that results stay bitwise the same.
-            let mq1 = q1.map(|x| m * x);
-            let q: Sym3 = std::array::from_fn(|k| mq1[k] + lambda * q2[k]);
-            let ldl =
-                Ldl::factor(&q).map_err(|(pivot, value)| ContactError::NotPositiveDefinite {
-                    what: "(1−λ)q1 + λq2",
-                    pivot,
-                    value,
-                })?;
-            let s = ldl.solve(r12);
             match near_end {
-                true => (sym_mul(&mq1, &s), s),
+                true => (sym_mul(&q1.map(|x| m * x), &s), s),
                 false => (sym_mul(q1, &s).map(|x| m * x), s),
             }
         }

@@ -50,7 +50,7 @@ pub(crate) enum Outcome {
 /// The integrator's state: velocities (angular ones in length units, `ω × L`) and the
 /// adaptive step.
 pub(crate) struct Fire {
-    pub(crate) params: FireParams,
+    params: FireParams,
     velocity: Vec<[f64; 3]>,
     spin: Vec<[f64; 3]>,
     levers: Vec<f64>,

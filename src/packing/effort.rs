@@ -1,0 +1,64 @@
+//! How much a packing may spend for density (`packing.effort`): the step budget of a
+//! trial below the target, and the recompression cycles that follow the first jamming
+//! point.
+
+#[cfg(doc)]
+use super::FireParams;
+use super::ProtocolParams;
+
+/// How far past the scale of a jammed state a recompression cycle compresses it,
+/// relatively: 0.1 of scale is a third more packing fraction (0.64 to 0.85 for
+/// spheres), far enough that the relaxation there rearranges the whole packing
+/// rather than settling back into the jammed state. On 10 000 equal spheres (seed 1,
+/// three cycles) 0.1 reached 0.6451 and 0.2 0.6452, 0.02 and 0.05 less on 500
+/// (BENCHMARKS.md, "Effort").
+pub(super) const RECOMPRESSION: f64 = 0.1;
+
+/// The first scale of a recompression cycle, from the jamming point `low` just found:
+/// the current state (the last trial's) is compressed well past it and its jamming
+/// point found again from there (see [`recompression_cycles`]). The unjamming moves
+/// (module `unjam`) follow, at the scale returned.
+pub(super) fn start_cycle(low: f64) -> f64 {
+    low * (1.0 + RECOMPRESSION)
+}
+
+/// The jamming test's window in the relaxations of a recompression cycle, as a share
+/// of [`FireParams::window`]: each starts from a state relaxed at a nearby scale, not
+/// from random positions, so FIRE needs no long start and its plateau is recognised
+/// in half the steps. On 500 equal spheres (seeds 1–5) a cycle then took about half
+/// its FIRE steps, for a mean density within the seeds' spread (three cycles: 0.6446
+/// against 0.6454, 37 % fewer steps), so that seven cycles cost about what three did
+/// and reached 0.6463 (BENCHMARKS.md, "third round"). In the search at effort 1 it
+/// lost 0.0002–0.0006 on the mean and is not used there.
+pub(super) const CYCLE_WINDOW: f64 = 0.5;
+
+/// The step budget of a relaxation below the target scale:
+/// [`ProtocolParams::trial_steps`] times `effort` up to 1 (more buys no density: see
+/// [`recompression_cycles`]), at least one step.
+pub(super) fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
+    ((protocol.trial_steps as f64 * effort.min(1.0)).ceil() as u64).max(1)
+}
+
+/// The recompression cycles of `effort`: `⌊CYCLES_PER_EFFORT · (effort − 1)⌋`, none
+/// below 1.5. Once the bisection has found the jamming point, the state is compressed
+/// by [`RECOMPRESSION`], relaxed, and the jamming point bisected again from there, the
+/// densest clean state of all cycles kept. Each lets the packing rearrange from a
+/// denser start than random positions, which is what raises its jamming point (a
+/// jammed packing's density depends on its history: Chaudhuri, Berthier and Sastry,
+/// *Phys. Rev. Lett.* 104, 165701, 2010). Longer relaxations per trial, instead, bought
+/// nothing (0.6406–0.6408 on 10 000 spheres from 0.3 to 10 times the budget).
+pub(super) fn recompression_cycles(effort: f64) -> u32 {
+    (CYCLES_PER_EFFORT * (effort.max(1.0) - 1.0))
+        .floor()
+        .min(f64::from(u32::MAX)) as u32
+}
+
+/// Recompression cycles per unit of `effort` above 1. A cycle (with its half window,
+/// [`CYCLE_WINDOW`]) costs about 0.8 of the search at effort 1 on 10 000 equal
+/// spheres (2 250 FIRE steps against 2 900), so that two per unit keep `effort = E`
+/// at about what it cost when it meant E − 1 cycles of the full window, for more
+/// density (BENCHMARKS.md, "third round").
+const CYCLES_PER_EFFORT: f64 = 2.0;
+
+/// The least `effort` with a recompression cycle (and so with unjamming moves).
+pub const MIN_CYCLE_EFFORT: f64 = 1.0 + 1.0 / CYCLES_PER_EFFORT;
