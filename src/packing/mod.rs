@@ -126,7 +126,7 @@ pub fn pack(
     let mut stuck = f64::INFINITY;
     let mut s = 1.0;
     let mut cycles_left = recompression_cycles(params.effort);
-    let mut unjammer = unjam::Unjammer::new(params.unjam, seed);
+    let mut unjammer = unjam::Unjammer::new(params.unjam, cycles_left, seed);
     let reason = loop {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if left == 0 {

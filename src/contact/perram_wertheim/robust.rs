@@ -308,9 +308,10 @@ fn ratio(n: &[f64; 5], c: &[f64; 5], y: f64) -> f64 {
 /// from `ln start` if `start` is in range (from `y = ⅓` if not), kept in the bracket;
 /// a bisection of `u` when the Newton point leaves it, `V ≥ 0` (φ not concave there),
 /// or the bracket has not halved over two steps. Stops once the gain `ψ²/(2|V|)` is
-/// at most [`FINAL_GAIN`] or the step at rounding level (after taking that last step),
-/// or the bracket is a few ulps wide. Returns `F`, `y`, why it stopped and the
-/// evaluations.
+/// at most [`FINAL_GAIN`] and the Newton step of `u` below [`LOG_Y_STEP`] (after
+/// taking that last step), or the step is at rounding level, or the bracket a few ulps
+/// wide; [`Stop::MaxIterations`] if [`MAX_ITERATIONS`] pass first, even with `F`
+/// settled (λ is not). Returns `F`, `y`, why it stopped and the evaluations.
 fn root(n: &[f64; 5], c: &[f64; 5], start: f64) -> (f64, f64, Stop, u32) {
     let (mut lo, mut hi) = (SMALLEST_Y.ln(), 0.0f64);
     let mut u = if start > SMALLEST_Y && start < 1.0 {
@@ -334,10 +335,11 @@ fn root(n: &[f64; 5], c: &[f64; 5], start: f64) -> (f64, f64, Stop, u32) {
             // The last step, unless it leaves the bracket (where F is flat to far below
             // an ulp and the step is all rounding). F is settled; λ is too once the
             // step is below LOG_Y_STEP (F may be flat over a wide range of y, and the
-            // contact point moves with λ), else Newton goes on.
+            // contact point moves with λ), else Newton goes on: out of iterations
+            // before λ settles, the answer is not Converged (below the loop).
             let last = if inside { newton.exp() } else { y };
             let settled = (newton - u).abs() <= LOG_Y_STEP * (1.0 + u.abs());
-            if !inside || settled || step_at_rounding || p == 0.0 || iterations == MAX_ITERATIONS {
+            if !inside || settled || step_at_rounding || p == 0.0 {
                 return (ratio(n, c, last), last, Stop::Converged, iterations);
             }
             u = newton;

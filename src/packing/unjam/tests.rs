@@ -162,3 +162,15 @@ fn swaps_in_the_loop_keep_it_clean_frozen_deterministic_and_never_less_dense() {
         assert_eq!((a.centre, a.quaternion), (b.centre, b.quaternion));
     }
 }
+
+/// The rounds per cycle follow the documented schedule: 8 with one cycle, doubled per
+/// further cycle, never past `SWAP_ROUNDS`, whatever the cycle count.
+#[test]
+fn swap_rounds_double_with_the_cycles_up_to_the_cap() {
+    let rounds: Vec<usize> = (1..=5).map(swap_rounds).collect();
+    assert_eq!(
+        rounds,
+        [FIRST_SWAP_ROUNDS, 16, SWAP_ROUNDS, SWAP_ROUNDS, SWAP_ROUNDS]
+    );
+    assert_eq!(swap_rounds(u32::MAX), SWAP_ROUNDS);
+}
