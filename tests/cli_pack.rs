@@ -662,6 +662,8 @@ fn a_target_above_the_reachable_estimate_is_warned_of_before_packing() {
             && err.contains("reach about 0.643 (Farr and Groot's estimate"),
         "{err}"
     );
+    // Jammed at the default effort: the closing message names the setting that buys more.
+    assert!(err.contains("at packing.effort = 1 (from 1.5 on"), "{err}");
     let (_, summary) = check_written_packing(&out, true);
     let reachable = number(&summary["reachable_fraction"]);
     assert!((reachable - 0.6435).abs() < 1e-3, "{reachable}");

@@ -5,21 +5,55 @@
 #[cfg(doc)]
 use super::FireParams;
 use super::ProtocolParams;
+use crate::scene::GrainSpec;
 
 /// How far past the scale of a jammed state a recompression cycle compresses it,
 /// relatively: 0.1 of scale is a third more packing fraction (0.64 to 0.85 for
 /// spheres), far enough that the relaxation there rearranges the whole packing
 /// rather than settling back into the jammed state. On 10 000 equal spheres (seed 1,
 /// three cycles) 0.1 reached 0.6451 and 0.2 0.6452, 0.02 and 0.05 less on 500
-/// (BENCHMARKS.md, "Effort").
+/// (BENCHMARKS.md, "Effort"); 0.3 and 1.0 lost density on every compact class
+/// (lognormal spheres, frozen spheroids, kanapy's grains: BENCHMARKS.md, "fourth
+/// round"). Slender grains take [`DEEP_RECOMPRESSION`].
 pub(super) const RECOMPRESSION: f64 = 0.1;
 
+/// The recompression of slender grains (mean slenderness at least [`SLENDER`]): twice
+/// the scale, eight times the packing fraction, so that the relaxation there spreads
+/// the grains afresh and the cycle's bisection starts from that state instead of a
+/// jammed one. Frozen needles and platelets of aspect 12 (573, effort 3, seed 1)
+/// reached 0.250, 0.269, 0.281 and the asked 0.30 with 0.1, 0.3, 0.5 and 1.0; frozen
+/// spheroids of aspect 6 0.441 with 0.1 and 0.531 with 1.0 (BENCHMARKS.md, "fourth
+/// round").
+pub(super) const DEEP_RECOMPRESSION: f64 = 1.0;
+
+/// The mean slenderness (longest over shortest semi-axis) from which the cycles
+/// recompress by [`DEEP_RECOMPRESSION`]: between the classes measured, grains of
+/// aspect ratio up to 3.2 (kanapy's, mean about 2.3) lost density with it and grains
+/// of aspect 6 and 12 gained.
+pub(super) const SLENDER: f64 = 4.0;
+
+/// The recompression of a cycle for these grains: [`DEEP_RECOMPRESSION`] if their
+/// mean slenderness is at least [`SLENDER`], else [`RECOMPRESSION`].
+pub(super) fn recompression(specs: &[GrainSpec]) -> f64 {
+    let slenderness = |s: &GrainSpec| {
+        let [a, b, c] = s.semi_axes;
+        a.max(b).max(c) / a.min(b).min(c)
+    };
+    let mean = specs.iter().map(slenderness).sum::<f64>() / specs.len().max(1) as f64;
+    if mean >= SLENDER {
+        DEEP_RECOMPRESSION
+    } else {
+        RECOMPRESSION
+    }
+}
+
 /// The first scale of a recompression cycle, from the jamming point `low` just found:
-/// the current state (the last trial's) is compressed well past it and its jamming
-/// point found again from there (see [`recompression_cycles`]). The unjamming moves
-/// (module `unjam`) follow, at the scale returned.
-pub(super) fn start_cycle(low: f64) -> f64 {
-    low * (1.0 + RECOMPRESSION)
+/// the current state (the last trial's) is compressed by `depth` (see
+/// [`recompression`]) past it and its jamming point found again from there (see
+/// [`recompression_cycles`]). The unjamming moves (module `unjam`) follow, at the
+/// scale returned.
+pub(super) fn start_cycle(low: f64, depth: f64) -> f64 {
+    low * (1.0 + depth)
 }
 
 /// The jamming test's window in the relaxations of a recompression cycle, as a share

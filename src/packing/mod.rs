@@ -57,7 +57,7 @@ pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningErro
 pub use verify::verify;
 
 use crate::scene::{Boundary, Rotation};
-use effort::{recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW};
+use effort::{recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW};
 use fire::{Context, Fire, Outcome};
 use neighbours::Neighbours;
 use rand::{Rng, SeedableRng};
@@ -126,6 +126,7 @@ pub fn pack(
     let mut stuck = f64::INFINITY;
     let mut s = 1.0;
     let mut cycles_left = recompression_cycles(params.effort);
+    let depth = recompression(specs);
     let mut unjammer = unjam::Unjammer::new(params.unjam, cycles_left, seed);
     let reason = loop {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
@@ -168,7 +169,7 @@ pub fn pack(
             }
             cycles_left -= 1;
             stuck = f64::INFINITY;
-            s = start_cycle(low);
+            s = start_cycle(low, depth);
             // Unjamming moves (`packing.unjam`, module `unjam`) at the recompressed
             // scale, before the cycle's first relaxation.
             unjammer.before_recompression(&mut state, &mut fire, &mut run, &protocol, s)?;

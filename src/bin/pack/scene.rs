@@ -170,6 +170,15 @@ fn run_failure(error: RunError, name: &str) -> Failure {
 fn why(stop: StopReason, scene: &Scene) -> String {
     match stop {
         StopReason::TargetReached => "the target was reached".to_owned(),
+        StopReason::Jammed if scene.packing.effort < grainpack::packing::MIN_CYCLE_EFFORT => {
+            format!(
+                "jammed: the grains cannot grow any further at packing.effort = {} \
+                 (from {} on, the jammed state is compressed again and searched anew, \
+                 for more density in more time)",
+                scene.packing.effort,
+                grainpack::packing::MIN_CYCLE_EFFORT
+            )
+        }
         StopReason::Jammed => "jammed: the grains cannot grow any further".to_owned(),
         StopReason::StepLimit => format!(
             "step limit: {} steps made (packing.max_steps)",

@@ -2,7 +2,8 @@
 //! a premature jam that the compress-and-relax protocol alone does not take.
 //!
 //! Once the bisection has found a jamming point and effort asks for another cycle, the
-//! loop compresses the state by [`RECOMPRESSION`](super::effort::RECOMPRESSION) and relaxes it
+//! loop compresses the state (by [`RECOMPRESSION`](super::effort::RECOMPRESSION), slender
+//! grains by [`DEEP_RECOMPRESSION`](super::effort::DEEP_RECOMPRESSION)) and relaxes it
 //! there. Before that relaxation, with `unjam = "swap"`, grains of similar volume but
 //! different size, shape or orientation exchange their positions wherever that lowers
 //! the overlap energy at the compressed scale, in rounds of sweeps separated by short
