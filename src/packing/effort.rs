@@ -75,7 +75,7 @@ pub(super) fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
 
 /// The recompression cycles of `effort`: `⌊CYCLES_PER_EFFORT · (effort − 1)⌋`, none
 /// below 1.5. Once the bisection has found the jamming point, the state is compressed
-/// by [`RECOMPRESSION`], relaxed, and the jamming point bisected again from there, the
+/// (by [`recompression`]), relaxed, and the jamming point bisected again from there, the
 /// densest clean state of all cycles kept. Each lets the packing rearrange from a
 /// denser start than random positions, which is what raises its jamming point (a
 /// jammed packing's density depends on its history: Chaudhuri, Berthier and Sastry,

@@ -166,7 +166,7 @@ mod tests {
     }
 
     /// The recompression cycles judge with half the window (`CYCLE_WINDOW` in
-    /// `packing/mod.rs`): decays to zero still go on, a plateau is still recognised.
+    /// `packing/effort.rs`): decays to zero still go on, a plateau is still recognised.
     #[test]
     fn half_window_lets_decays_run_and_finds_plateaus() {
         let half = |e: &dyn Fn(f64) -> f64, steps: u64| {

@@ -287,10 +287,17 @@ fn pair_force(
         force,
         torque_i: cross(&g.point, &force.map(|x| -x)),
         torque_j: cross(&pj, &force),
-        energy: w * (1.0 - mu) * (1.0 - mu),
+        energy: pair_energy(reach, mu),
         mu1,
     };
     (mu1, Some(force))
+}
+
+/// The overlap energy of a pair whose bodies, scaled by `big_s`, overlap with gauge
+/// `μ = μ₁ / big_s < 1`: `w (1 − μ)²` with `w = reach²`, `reach = big_s (ρ_i + ρ_j)`
+/// (inscribed radii). The swap moves (`unjam`) judge with the same energy.
+pub(crate) fn pair_energy(reach: f64, mu: f64) -> f64 {
+    reach * reach * (1.0 - mu) * (1.0 - mu)
 }
 
 /// Two spheres need no contact function: `μ = d / (R_i + R_j)`, normal `r/d`, and

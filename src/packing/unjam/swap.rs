@@ -9,6 +9,7 @@
 use super::SWAP_VOLUME_RATIO;
 use crate::contact::{contact_function_fast, dot};
 use crate::octree::{Neighbour, Octree, Params, Sphere};
+use crate::packing::forces::pair_energy;
 use crate::packing::state::State;
 use crate::packing::PackError;
 use crate::scene::Boundary;
@@ -150,7 +151,7 @@ impl Look<'_> {
             let mu = mu1 / big_s;
             if mu < 1.0 {
                 let reach = big_s * (eg.inscribed_radius() + ek.inscribed_radius());
-                energy += (reach * (1.0 - mu)).powi(2);
+                energy += pair_energy(reach, mu);
                 if energy >= cap {
                     return Ok(f64::INFINITY);
                 }
