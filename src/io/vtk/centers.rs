@@ -1,10 +1,10 @@
 //! `centers.vtp`: one point per grain, with its shape as tensors for glyphs.
 
-use super::{encode, grain_id, phase_index, rotation};
+use super::xml::{write_piece, Array, Piece, Scalar, Section};
+use super::{grain_id, phase_index, rotation};
 use crate::packing::PackedGrain;
 use crate::scene::quaternion_to_euler;
 use std::io::{self, Write};
-use vtkio::model::{Attribute, Attributes, DataSet, IOBuffer, PolyDataPiece, VertexNumbers};
 
 /// `R diag(a₁^p, a₂^p, a₃^p) Rᵀ` in row-major order, for column `k` of R along
 /// semi-axis `k`: `p = 1` gives the shape tensor, `p = 2` the quadratic form.
@@ -35,64 +35,109 @@ pub fn quadratic_form(grain: &PackedGrain) -> [f64; 9] {
     tensor(grain, 2)
 }
 
-/// Writes `centers.vtp` (VTK XML PolyData, binary base64, float64): one point per
-/// grain at its centre, each a vertex cell, with point data `grain_id`, `phase`,
-/// `semi_axes` (3 components), `shape_tensor` ([`shape_tensor`], 9 components, the
-/// active tensors) and `quadratic_form` ([`quadratic_form`], 9 components); with
-/// `crystals` (`crystals[i]` the crystal orientation of `grains[i]`), also
-/// `crystal_quaternion` (4 components, scalar first) and `euler_angles` (Bunge,
-/// degrees).
+/// Writes `centers.vtp` (VTK XML PolyData, arrays zlib-compressed in raw appended
+/// data, float64, `io/vtk/xml.rs`): one point per grain at its centre, each a vertex
+/// cell, with point data `grain_id`, `phase` (`Int32`), `semi_axes` (3 components),
+/// `shape_tensor` ([`shape_tensor`], 9 components, the active tensors) and
+/// `quadratic_form` ([`quadratic_form`], 9 components); with `crystals` (`crystals[i]`
+/// the crystal orientation of `grains[i]`), also `crystal_quaternion` (4 components,
+/// scalar first) and `euler_angles` (Bunge, degrees).
 pub fn write_centers_vtp(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     crystals: Option<&[[f64; 4]]>,
 ) -> io::Result<()> {
     let n = grains.len();
-    let mut ids = Vec::with_capacity(n);
-    let mut phases = Vec::with_capacity(n);
     for g in grains {
-        ids.push(grain_id(g)?);
-        phases.push(phase_index(g)?);
+        grain_id(g)?;
+        phase_index(g)?;
     }
-    let piece = PolyDataPiece {
-        points: IOBuffer::new(grains.iter().flat_map(|g| g.centre).collect::<Vec<f64>>()),
-        verts: Some(VertexNumbers::XML {
-            connectivity: (0..n as u64).collect(),
-            offsets: (1..=n as u64).collect(),
-        }),
-        data: Attributes {
-            point: vec![
-                Attribute::scalars("grain_id", 1).with_data(ids),
-                Attribute::generic("phase", 1).with_data(phases),
-                Attribute::generic("semi_axes", 3).with_data(
-                    grains
-                        .iter()
-                        .flat_map(|g| g.semi_axes)
-                        .collect::<Vec<f64>>(),
-                ),
-                Attribute::tensors("shape_tensor")
-                    .with_data(grains.iter().flat_map(shape_tensor).collect::<Vec<f64>>()),
-                Attribute::generic("quadratic_form", 9)
-                    .with_data(grains.iter().flat_map(quadratic_form).collect::<Vec<f64>>()),
-            ]
-            .into_iter()
-            .chain(crystals.into_iter().flat_map(|c| {
-                [
-                    Attribute::generic("crystal_quaternion", 4)
-                        .with_data(c.iter().flatten().copied().collect::<Vec<f64>>()),
-                    Attribute::generic("euler_angles", 3).with_data(
-                        c.iter()
-                            .flat_map(|&q| quaternion_to_euler(q).map(f64::to_degrees))
-                            .collect::<Vec<f64>>(),
-                    ),
-                ]
-            }))
-            .collect(),
-            cell: Vec::new(),
-        },
-        ..Default::default()
+    let point = |name, components, value: fn(&PackedGrain) -> Vec<f64>| {
+        Array::new(
+            Section::PointData,
+            name,
+            Scalar::Float64,
+            components,
+            move |i, b| b.extend(value(&grains[i]).iter().flat_map(|x| x.to_le_bytes())),
+        )
     };
-    encode(out, DataSet::inline(piece))
+    let int = |name, value: fn(&PackedGrain) -> io::Result<i32>| {
+        Array::new(Section::PointData, name, Scalar::Int32, 1, move |i, b| {
+            b.extend(value(&grains[i]).unwrap_or_default().to_le_bytes())
+        })
+    };
+    let mut arrays = vec![
+        int("grain_id", grain_id),
+        int("phase", phase_index),
+        point("semi_axes", 3, |g| g.semi_axes.to_vec()),
+        point("shape_tensor", 9, |g| shape_tensor(g).to_vec()),
+        point("quadratic_form", 9, |g| quadratic_form(g).to_vec()),
+    ];
+    if let Some(c) = crystals {
+        let q = move |i: usize| c.get(i).copied().unwrap_or([1.0, 0.0, 0.0, 0.0]);
+        let values = move |i: usize, euler: bool| -> Vec<f64> {
+            if euler {
+                quaternion_to_euler(q(i)).map(f64::to_degrees).to_vec()
+            } else {
+                q(i).to_vec()
+            }
+        };
+        for (name, components, euler) in
+            [("crystal_quaternion", 4, false), ("euler_angles", 3, true)]
+        {
+            arrays.push(Array::new(
+                Section::PointData,
+                name,
+                Scalar::Float64,
+                components,
+                move |i, b| b.extend(values(i, euler).iter().flat_map(|x| x.to_le_bytes())),
+            ));
+        }
+    }
+    let index = Scalar::index(n);
+    arrays.push(point_array_centres(grains));
+    arrays.push(Array::new(
+        Section::Verts,
+        "connectivity",
+        index,
+        1,
+        move |i, b| index.push_index(i, b),
+    ));
+    arrays.push(Array::new(
+        Section::Verts,
+        "offsets",
+        index,
+        1,
+        move |i, b| index.push_index(i + 1, b),
+    ));
+    let counts = ["NumberOfLines", "NumberOfStrips", "NumberOfPolys"].map(|k| (k, 0));
+    write_piece(
+        out,
+        Piece {
+            kind: "PolyData",
+            counts: [("NumberOfPoints", n), ("NumberOfVerts", n)]
+                .into_iter()
+                .chain(counts)
+                .collect(),
+            active: vec![
+                (Section::PointData, "Scalars", "grain_id"),
+                (Section::PointData, "Tensors", "shape_tensor"),
+            ],
+            items: n,
+            arrays,
+        },
+    )
+}
+
+/// The grains' centres as the points.
+fn point_array_centres(grains: &[PackedGrain]) -> Array<'_> {
+    Array::new(
+        Section::Points,
+        "Points",
+        Scalar::Float64,
+        3,
+        move |i, b| b.extend(grains[i].centre.iter().flat_map(|x| x.to_le_bytes())),
+    )
 }
 
 #[cfg(test)]

@@ -9,9 +9,12 @@
 //!   radius 0.5, so set its Scale Factor to 2 for true size.
 //!
 //! Both are VTK XML files (version 1.0, little-endian, `UInt64` headers) with every
-//! array in base64 binary: doubles go through unrounded, and every VTK-based reader
-//! and meshio load it. They are written by `vtkio`, which expresses all of it but the
-//! type of the topology arrays: it writes them as `UInt64`, relabelled `Int64` here.
+//! array zlib-compressed in raw appended data, as VTK itself writes them by default,
+//! which every VTK-based reader and meshio load. Values go through unrounded, but for
+//! `grains.vtu`'s points, which are `Float32` (their rounding is far below the facets'
+//! distance from the ellipsoid). They
+//! are streamed by a small writer of their own (`src/io/vtk/xml.rs`), grain by grain, so that a
+//! million grains need no more memory than a thousand.
 //!
 //! ```
 //! use grainpack::io::vtk::{write_centers_vtp, write_grains_vtu};
@@ -27,7 +30,7 @@
 //! let domain = Domain { size: [10.0; 3], boundary: Boundary::Periodic };
 //! let mut vtu = Vec::new();
 //! write_grains_vtu(&mut vtu, &[grain], &domain, &VtkSpec::default(), None)?;
-//! assert!(String::from_utf8(vtu)?.contains(r#"NumberOfCells="320""#));
+//! assert!(String::from_utf8_lossy(&vtu).contains(r#"NumberOfCells="320""#));
 //! let mut vtp = Vec::new();
 //! write_centers_vtp(&mut vtp, &[grain], None)?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -36,6 +39,7 @@
 mod centers;
 mod icosphere;
 mod surfaces;
+mod xml;
 
 pub use centers::{quadratic_form, shape_tensor, write_centers_vtp};
 pub use icosphere::Icosphere;
@@ -43,9 +47,7 @@ pub use surfaces::{periodic_shifts, write_grains_vtu};
 
 use crate::contact::rotation_column;
 use crate::packing::PackedGrain;
-use std::io::{self, Write};
-use vtkio::model::{ByteOrder, CellType, DataSet, Version, Vtk};
-use vtkio::xml::Compressor;
+use std::io;
 
 /// File name of the grain surfaces.
 pub const GRAINS_VTU: &str = "grains.vtu";
@@ -53,8 +55,8 @@ pub const GRAINS_VTU: &str = "grains.vtu";
 /// File name of the grain centres.
 pub const CENTERS_VTP: &str = "centers.vtp";
 
-/// VTK's cell type of a triangle.
-const TRIANGLE: CellType = CellType::Triangle;
+/// VTK's cell type of a triangle (`VTK_TRIANGLE`).
+const TRIANGLE: u8 = 5;
 
 /// The columns of the rotation matrix of `q`: `r[k]` is the direction of semi-axis `k`.
 fn rotation(q: [f64; 4]) -> [[f64; 3]; 3] {
@@ -75,86 +77,4 @@ fn phase_index(grain: &PackedGrain) -> io::Result<i32> {
             grain.id, grain.phase
         ))
     })
-}
-
-/// Writes `data` as an uncompressed XML VTK file with base64 binary arrays, after an
-/// XML declaration and with a final newline, its topology arrays as `Int64`
-/// ([`signed_topology`]).
-fn encode(out: &mut dyn Write, data: DataSet) -> io::Result<()> {
-    let vtk = Vtk {
-        version: Version::new_xml(1, 0),
-        title: String::new(),
-        byte_order: ByteOrder::LittleEndian,
-        data,
-        file_path: None,
-    };
-    let xml = vtk
-        .try_into_xml_format(Compressor::None, 0)
-        .map_err(io::Error::other)?;
-    let mut text = Vec::new();
-    xml.write(&mut text).map_err(io::Error::other)?;
-    let text = String::from_utf8(text).map_err(io::Error::other)?;
-    out.write_all(b"<?xml version=\"1.0\"?>\n")?;
-    out.write_all(signed_topology(&text)?.as_bytes())?;
-    out.write_all(b"\n")
-}
-
-/// The topology arrays of vtkio's XML: connectivity and offsets.
-const TOPOLOGY_ARRAYS: [&str; 2] = ["connectivity", "offsets"];
-
-/// Relabels vtkio's `UInt64` connectivity and offsets arrays as `Int64`, the type VTK
-/// itself writes.
-///
-/// This is the one thing vtkio cannot express: it always writes these arrays as
-/// `UInt64`, and meshio (5.3) then returns the cells as float64 arrays, since numpy
-/// promotes `uint64` with a signed integer to float64. The indices are far below 2⁶³,
-/// so their little-endian bytes, and the base64 text, are the same as `Int64`: only
-/// the `type` attribute changes. Each array must be found, or the file is not written
-/// (a vtkio that serializes differently must fail loudly, not quietly write `UInt64`).
-fn signed_topology(xml: &str) -> io::Result<String> {
-    let mut text = xml.to_owned();
-    for name in TOPOLOGY_ARRAYS {
-        let unsigned = format!(r#"<DataArray type="UInt64" Name="{name}""#);
-        if !text.contains(&unsigned) {
-            return Err(io::Error::other(format!(
-                "vtkio wrote no UInt64 {name} array: cannot relabel it as Int64"
-            )));
-        }
-        text = text.replace(
-            &unsigned,
-            &format!(r#"<DataArray type="Int64" Name="{name}""#),
-        );
-    }
-    Ok(text)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn topology_arrays_are_int64_and_nothing_else_is_relabelled() {
-        let grain = PackedGrain {
-            id: 0,
-            phase: 0,
-            centre: [1.0; 3],
-            semi_axes: [1.0; 3],
-            quaternion: [1.0, 0.0, 0.0, 0.0],
-        };
-        let mut out = Vec::new();
-        write_centers_vtp(&mut out, &[grain], None).unwrap();
-        let text = String::from_utf8(out).unwrap();
-        for name in TOPOLOGY_ARRAYS {
-            assert!(text.contains(&format!(r#"<DataArray type="Int64" Name="{name}""#)));
-        }
-        assert!(!text.contains(r#"<DataArray type="UInt64""#), "{text}");
-        assert!(text.contains(r#"header_type="UInt64""#));
-        assert!(text.starts_with("<?xml") && text.ends_with("</VTKFile>\n"));
-    }
-
-    #[test]
-    fn a_serialization_without_the_expected_arrays_is_an_error() {
-        let e = signed_topology("<VTKFile></VTKFile>").unwrap_err();
-        assert!(e.to_string().contains("connectivity"), "{e}");
-    }
 }
