@@ -126,8 +126,11 @@ def main() -> int:
 
     bin_dir = Path(tempfile.mkdtemp(prefix="run_guide_bin_"))
     os.symlink(pack, bin_dir / "pack")
+    # A wrapper, not a link: a venv's Python finds its packages from the path it is
+    # started by, and a link elsewhere would start the base Python.
     for name in ("python", "python3"):
-        os.symlink(sys.executable, bin_dir / name)
+        (bin_dir / name).write_text(f'#!/bin/sh\nexec "{sys.executable}" "$@"\n')
+        (bin_dir / name).chmod(0o755)
     env = dict(os.environ, PATH=f"{bin_dir}{os.pathsep}{Path(sys.executable).parent}"
                f"{os.pathsep}{os.environ.get('PATH', '')}", MPLBACKEND="Agg")
 
