@@ -7,9 +7,10 @@ Packs every scene of `configs/` as the tutorials and the gallery do (same seed, 
 options), draws each packing's grains in 3D with PyVista off-screen (`grains.vtu`,
 coloured by phase, the box outlined), and copies the figures `pack` itself draws
 (`sections.png`, `statistics.png`, `pole_figures.png`) that the pages show, each
-scaled down and reduced to a palette so that all of docs/img stays a few hundred kB.
-It prints a Markdown table of every scene's figures (grains, fraction reached, stop
-reason, packing time) for the gallery. Needs the pinned venv of
+scaled down and reduced to a palette so that all of docs/img stays a few hundred kB,
+and the README's picture (the example's grains beside its RVE's mid-sections).
+It prints the gallery's Markdown table of every scene's figures (grains, fraction
+reached, stop reason: the same on any machine for a seed). Needs the pinned venv of
 tools/requirements-exports.txt (PyVista, VTK with its off-screen renderer; pillow).
 Not run by CI: run it when a scene, or what `pack` draws, changes, and commit
 docs/img.
@@ -43,10 +44,12 @@ SCENES = {
     "density_spheroids": ("spheroids", []),
 }
 # Width in pixels of the 3D renders, and the widest a copied figure may be.
-RENDER_PX = 480
+RENDER_PX = 400
 FIGURE_MAX_PX = 900
 # Colours of the palette a picture is reduced to (PNG size falls about 3-fold).
-PALETTE_COLOURS = 64
+PALETTE_COLOURS = 48
+# The grains of a one-phase scene (a light steel blue).
+SINGLE_PHASE_COLOUR = "#8fb3d9"
 # Where the camera looks from, per scene: the rolled sheet along TD shows the pancakes
 # edge-on; the others from an oblique corner.
 VIEW = {"rolled_pancakes": "xz"}
@@ -63,10 +66,11 @@ def render(out_dir: Path, path: Path, view: str | None) -> None:
     box = json.loads((out_dir / "summary.json").read_text())["box"]
     plotter = pv.Plotter(off_screen=True, window_size=(RENDER_PX, RENDER_PX))
     plotter.set_background("white")
-    phases = np.unique(grains.cell_data["phase"])
-    plotter.add_mesh(grains, scalars="phase", cmap="tab10" if len(phases) > 1 else None,
-                     color=None if len(phases) > 1 else "#8fb3d9", show_scalar_bar=False,
-                     clim=[0, 9] if len(phases) > 1 else None, smooth_shading=True)
+    if len(np.unique(grains.cell_data["phase"])) > 1:
+        plotter.add_mesh(grains, scalars="phase", cmap="tab10", clim=[0, 9], show_scalar_bar=False,
+                         smooth_shading=True)
+    else:
+        plotter.add_mesh(grains, color=SINGLE_PHASE_COLOUR, smooth_shading=True)
     plotter.add_mesh(pv.Box(bounds=(0, box[0], 0, box[1], 0, box[2])).outline(), color="black", line_width=2)
     if view == "xz":
         plotter.view_xz()
@@ -99,10 +103,17 @@ def main() -> int:
         for figure in figures:
             save_small(Image.open(out / f"{figure}.png"), IMG / f"{name}-{figure.replace('_', '-')}.png", FIGURE_MAX_PX)
         s = json.loads((out / "summary.json").read_text())
-        rows.append(f"| `configs/{stem}.toml` | {s['grains']} | {s['packing_fraction']:.4f} "
-                    f"({s['target_fraction']:.4f}) | {s['stop_reason']} | {s['timings']['packing']:.2f} s |")
-    print("| scene | grains | fraction (target) | stop | packing time |")
-    print("|---|---:|---:|---|---:|")
+        rows.append(f"| [`{stem}.toml`](../configs/{stem}.toml) | {s['grains']} | {s['packing_fraction']:.4f} "
+                    f"({s['target_fraction']:.4f}) | {s['stop_reason'].replace('_', ' ')} |")
+    # The README's picture: the example's grains beside the mid-sections of its RVE.
+    left, right = Image.open(IMG / "first-grains.png"), Image.open(work / "grains" / "sections.png")
+    right = right.resize((round(right.width * left.height / right.height), left.height), Image.LANCZOS)
+    both = Image.new("RGB", (left.width + right.width, left.height), "white")
+    both.paste(left.convert("RGB"), (0, 0))
+    both.paste(right.convert("RGB"), (left.width, 0))
+    save_small(both, IMG / "readme.png", both.width)
+    print("| scene | grains | fraction (target) | stop |")
+    print("|---|---:|---:|---|")
     print("\n".join(rows))
     total = sum(p.stat().st_size for p in IMG.glob("*.png"))
     print(f"docs/img: {len(list(IMG.glob('*.png')))} pictures, {total / 1024:.0f} kB", file=sys.stderr)
