@@ -53,6 +53,11 @@ LINKED = ["configs", "tools", "examples"]
 BLOCK_TIMEOUT_S = 300
 
 
+def shown(page: Path) -> str:
+    """The page's path as reports give it: from the repository root when inside it."""
+    return str(page.relative_to(ROOT)) if page.is_relative_to(ROOT) else str(page)
+
+
 class GuideError(Exception):
     """A page whose markers or blocks cannot be run as written."""
 
@@ -104,7 +109,7 @@ def run_page(page: Path, work: Path, env: dict[str, str]) -> list[str]:
             output = done.stdout + done.stderr
         except subprocess.TimeoutExpired as e:
             status, output = "timeout", f"{e.stdout or ''}{e.stderr or ''}"
-        where = f"{page.relative_to(ROOT)}:{line}"
+        where = f"{shown(page)}:{line}"
         print(f"  {where} ({lang}) {'ok' if status == 0 else 'FAILED'} in {time.time() - started:.1f} s")
         if status != 0:
             failures.append(f"{where}: exit {status}\n{output[-3000:]}")
@@ -144,9 +149,9 @@ def main() -> int:
                 continue
             if not any(not lang.startswith("file:") for _, lang, _ in marked):
                 if page.parent.name == "tutorials":
-                    failures.append(f"{page.relative_to(ROOT)}: a tutorial with no {MARKER} block")
+                    failures.append(f"{shown(page)}: a tutorial with no {MARKER} block")
                 continue
-            print(f"{page.relative_to(ROOT)}: {len(marked)} blocks")
+            print(f"{shown(page)}: {len(marked)} blocks")
             if args.keep:
                 work = args.keep.resolve() / page.stem
                 shutil.rmtree(work, ignore_errors=True)
