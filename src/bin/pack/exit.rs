@@ -2,7 +2,7 @@
 
 use std::process::ExitCode;
 
-/// How `pack` ends; the codes are listed in `pack --help` and the README.
+/// How `pack` ends; the codes are listed in `pack --help` and docs/cli.md.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Exit {
     /// 0: done; for a scene, the target was reached and the packing verified.
