@@ -353,7 +353,7 @@ fn check_centres(out: &Path, grains: &[Grain]) {
     for (i, g) in grains.iter().enumerate() {
         assert_eq!((conn[i], offsets[i]), (i as f64, (i + 1) as f64));
         assert_eq!((ids[i], phases[i]), (g.id as f64, g.phase as f64));
-        // Doubles pass through base64 and through the CSV's 17 digits unchanged.
+        // Doubles pass through the compressed arrays and through the CSV's 17 digits unchanged.
         assert_eq!(&points[3 * i..3 * i + 3], g.centre.as_slice());
         assert_eq!(&axes[3 * i..3 * i + 3], &g.semi_axes[..]);
         let a_max = g.radius();
