@@ -62,7 +62,7 @@ use fire::{Context, Fire, Outcome};
 use neighbours::Neighbours;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use state::{State, WALL_MARGIN};
+use state::State;
 
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
@@ -101,7 +101,7 @@ pub fn pack(
     // space-filling curve, so that neighbours sit close in memory.
     let order = spatial_order(&centres, domain.size);
     let sorted: Vec<GrainSpec> = order.iter().map(|&k| specs[k]).collect();
-    let mut state = State::new(&sorted, domain).map_err(|e| match e {
+    let mut state = State::new(&sorted, domain, params.gap).map_err(|e| match e {
         PackError::Grain { id, source } => PackError::Grain {
             id: order[id],
             source,
@@ -199,7 +199,15 @@ pub fn pack(
             snapshot = turned_back;
         }
     }
-    finish(&sorted, &order, &mut state, snapshot, reason, run.counters)
+    finish(
+        &sorted,
+        &order,
+        &mut state,
+        snapshot,
+        reason,
+        run.counters,
+        params.gap,
+    )
 }
 
 /// The grains' indices sorted by the Morton code of their centres (10 bits a
@@ -247,7 +255,7 @@ fn clean_scale(
         for (c, w) in state.centres.iter().zip(&state.half_widths) {
             for k in 0..3 {
                 let room = c[k].min(size[k] - c[k]).max(0.0);
-                t = t.min(room / (w[k] * (1.0 + WALL_MARGIN)));
+                t = t.min(room / (w[k] * (1.0 + state.wall_margin)));
             }
         }
     }
@@ -311,7 +319,8 @@ impl Snapshot {
     }
 }
 
-/// Writes the snapshot out as packed grains and checks it exactly.
+/// Writes the snapshot out as packed grains (the grains themselves, not inflated by
+/// the gap) and checks it exactly, with the `gap`.
 /// `specs` and the state are in the loop's order: `order[k]` is the input index of the
 /// loop's grain `k`.
 fn finish(
@@ -321,6 +330,7 @@ fn finish(
     snapshot: Snapshot,
     stop: StopReason,
     counters: Counters,
+    gap: f64,
 ) -> Result<Packing, PackError> {
     let scale = snapshot.scale;
     state.centres = snapshot.centres;
@@ -335,7 +345,7 @@ fn finish(
         grains[order[k]] = Some(PackedGrain::of_spec(order[k] as u32, spec, scale, *c, *q));
     }
     let grains: Vec<PackedGrain> = grains.into_iter().flatten().collect();
-    let verification = verify(&grains, &state.domain)?;
+    let verification = verify(&grains, &state.domain, gap)?;
     let fraction = state.fraction(scale);
     Ok(Packing {
         grains,
