@@ -37,6 +37,14 @@
 //! The margin makes a relaxation finish as soon as the true overlaps are gone, long
 //! before the energy (taken at the inflated size) reaches zero. The result is checked
 //! afterwards by [`verify`], an exact test of every pair whose bounding spheres meet.
+//!
+//! # The gap
+//! With `packing.gap = g` every pair must keep μ ≥ 1 + g and every grain scaled by
+//! 1 + g must stay inside the walls. The loop has no path of its own for it: its
+//! shapes are the grains inflated by 1 + g (`State::new`), so a clean state of them is
+//! one of the grains keeping the gap (μ scales as 1 / size). Only the volumes, and so
+//! every fraction reported, are the grains' own; the grains are written at their own
+//! size, and [`verify`] checks them with the gap.
 
 mod effort;
 mod fire;
