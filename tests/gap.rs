@@ -7,6 +7,7 @@
 mod support;
 
 use grainpack::packing::{pack, Job, Packing, Tuning};
+use grainpack::run::Drawn;
 use grainpack::scene::{GrainSpec, Scene};
 use nalgebra::Vector3;
 use serde_json::Value;
@@ -276,6 +277,24 @@ fn a_gap_packs_exactly_as_the_grains_inflated_by_it() {
     assert!(v.is_clean() && v.gap == gap && v.min_gap >= gap, "{v:?}");
     // The inflated grains just touch where the real ones keep the gap.
     assert!(v.min_gap < gap + 1e-3, "{v:?}");
+}
+
+/// The reachable estimate is the inflated grains': the gap-0 estimate over (1 + g)³.
+/// Spheres asked for 0.55 are below it without a gap (0.655) and above it with 0.1, so
+/// only then is the target called unreachable before packing.
+#[test]
+fn the_reachable_estimate_and_its_warning_account_for_the_gap() {
+    let text = SPHERES.replace("target_fraction = 0.45", "target_fraction = 0.55");
+    let with_gap = Scene::from_str(&text, "gap.toml").unwrap();
+    let mut plain = with_gap.clone();
+    plain.packing.gap = 0.0;
+    let specs = with_gap.sample_grains(&mut with_gap.rng()).unwrap();
+    let (a, b) = (Drawn::of(&with_gap, &specs), Drawn::of(&plain, &specs));
+    // One division by 1.1³ (itself rounded): 1e-15 covers both roundings.
+    let ratio = b.reachable_fraction / a.reachable_fraction;
+    assert!((ratio - 1.1f64.powi(3)).abs() < 1e-15, "{ratio}");
+    assert_eq!((a.gap, a.drawn_fraction), (0.1, b.drawn_fraction));
+    assert!(a.above_reachable() && !b.above_reachable(), "{a:?} {b:?}");
 }
 
 #[test]
