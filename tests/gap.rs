@@ -143,12 +143,10 @@ fn spheres_keep_the_gap_between_every_pair_and_image() {
     // pairs sit at it (within the loop's margin of 1e-3, at which it takes the forces).
     assert!(least < gap + 2e-3, "least gap {least}");
     assert_eq!(number(&summary["gap"]), gap);
-    // The summary's smallest gap is over the pairs the check tests, those whose bounding
-    // spheres scaled by 1 + g meet: for spheres, exactly the pairs at the gap. Here
-    // none is (the loop stops a little beyond it), so it is null, which says that
-    // every pair is further apart than the gap.
-    assert!(summary["min_gap"].is_null() && least > gap, "{summary}");
-    assert_eq!(summary["checked_pairs"], 0);
+    // The summary's smallest gap is the brute force's: the exact contact function is
+    // accurate to 1e-13 on spheres, and 1e-9 is the precision of the comparison.
+    let reported = number(&summary["min_gap"]);
+    assert!((reported - least).abs() < 1e-9, "{reported} vs {least}");
     // Every fraction is of the grains themselves, not inflated.
     let volume: f64 = grains.iter().map(Grain::volume).sum::<f64>() / 24f64.powi(3);
     let packed = number(&summary["packing_fraction"]);

@@ -40,10 +40,11 @@ def test_the_gap_is_kept_between_every_pair_by_an_independent_check():
     assert overlapping == 0 and candidates > 0
     s = p.summary
     assert s["gap"] == GAP and s["checked_pairs"] == candidates
-    # μ of the grains is (1 + gap) μ of the scaled ones; golden section and the exact
-    # function both within 1e-13 of the truth, so 1e-9 is generous.
-    assert s["min_gap"] >= GAP
-    assert abs(math.sqrt(min_mu2) * (1 + GAP) - 1 - s["min_gap"]) <= 1e-9
+    # μ of the grains is (1 + gap) μ of the scaled ones. The summary's smallest gap is
+    # over these pairs and a few further out (up to 5 % beyond the gap), so at most
+    # theirs; golden section and the exact function both within 1e-13 of the truth, so
+    # 1e-9 is generous.
+    assert GAP <= s["min_gap"] <= math.sqrt(min_mu2) * (1 + GAP) - 1 + 1e-9
     # The fraction is of the grains themselves, not of the scaled ones.
     volume = np.sum(4 / 3 * np.pi * np.prod(p.semi_axes, axis=1)) / 30.0**3
     assert abs(volume - s["packing_fraction"]) <= 1e-12

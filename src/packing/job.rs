@@ -126,10 +126,12 @@ pub struct Verification {
     /// Smallest μ² over the checked pairs (∞ when there are none).
     pub min_mu2: f64,
     /// The smallest gap reached, in the units of `gap`: the least of `√μ² − 1` over the
-    /// checked pairs and, in a walled box, of `t − 1` over the grains, `t` the scale
-    /// about its centre at which a grain would touch a wall (∞ when there is neither).
-    /// Every pair not checked is at least `gap` apart, so the true least gap lies
-    /// between `gap` and this.
+    /// pairs whose bounding spheres, scaled by `(1 + gap)(1 +`
+    /// [`MIN_GAP_REACH`](super::MIN_GAP_REACH)`)`, meet (the checked pairs and a few
+    /// more) and, in a walled box, of `t − 1` over the grains, `t` the scale about its
+    /// centre at which a grain would touch a wall. Exact whenever it is below
+    /// `(1 + gap)(1 + MIN_GAP_REACH) − 1`; ∞ when no pair is that close and there is no
+    /// wall.
     pub min_gap: f64,
     /// Grains scaled by 1 + `gap` crossing a wall of a walled box (must be 0; always 0
     /// when periodic).

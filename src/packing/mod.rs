@@ -62,7 +62,7 @@ pub use effort::MIN_CYCLE_EFFORT;
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
 pub use job::{Counters, Job, PackError, Packing, Progress, Verification};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
-pub use verify::verify;
+pub use verify::{verify, MIN_GAP_REACH};
 
 use crate::scene::{Boundary, Rotation};
 use effort::{recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW};

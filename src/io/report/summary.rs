@@ -49,8 +49,9 @@ pub struct Summary<'a> {
     /// pair has μ ≥ 1 + `gap`, every grain scaled by 1 + `gap` is inside the walls.
     pub gap: f64,
     /// The smallest gap reached ([`Verification::min_gap`](crate::packing::Verification)):
-    /// the least `√μ² − 1` over the checked pairs and, in a walled box, the least room to
-    /// a wall; at least `gap`. `null` when there is neither.
+    /// the least `√μ² − 1` over the pairs and, in a walled box, the least room to a
+    /// wall; at least `gap`, exact up to 5 % beyond it. `null` when no pair is that close
+    /// and there is no wall.
     pub min_gap: Option<f64>,
     /// Grains crossing a wall of a walled box (0 in anything written).
     pub wall_violations: usize,
