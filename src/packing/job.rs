@@ -113,21 +113,39 @@ pub struct Job<'a> {
 /// What [`verify`](super::verify) found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Verification {
-    /// Pairs whose bounding spheres meet, each tested exactly.
+    /// The gap checked (`packing.gap`): every pair needs μ ≥ 1 + `gap`, every grain
+    /// scaled by 1 + `gap` about its centre must stay inside the walls.
+    pub gap: f64,
+    /// Pairs whose bounding spheres, scaled by 1 + `gap`, meet, each tested exactly.
     pub checked_pairs: usize,
     /// Pairs with μ² < 1 (must be 0).
     pub overlapping_pairs: usize,
+    /// Pairs closer than the gap, μ² < (1 + `gap`)², overlapping ones included (must
+    /// be 0; the same as `overlapping_pairs` when `gap` is 0).
+    pub gap_violations: usize,
     /// Smallest μ² over the checked pairs (∞ when there are none).
     pub min_mu2: f64,
-    /// Grains crossing a wall of a walled box (must be 0; always 0 when periodic).
+    /// The smallest gap reached, in the units of `gap`: the least of `√μ² − 1` over the
+    /// pairs whose bounding spheres, scaled by `(1 + gap)(1 +`
+    /// [`MIN_GAP_REACH`](super::MIN_GAP_REACH)`)`, meet (the checked pairs and a few
+    /// more) and, in a walled box, of `t − 1` over the grains, `t` the scale about its
+    /// centre at which a grain would touch a wall. Exact whenever it is below
+    /// `(1 + gap)(1 + MIN_GAP_REACH) − 1`; ∞ when no pair is that close and there is no
+    /// wall.
+    pub min_gap: f64,
+    /// Grains scaled by 1 + `gap` crossing a wall of a walled box (must be 0; always 0
+    /// when periodic).
     pub wall_violations: usize,
-    /// Grains overlapping their own periodic image (must be 0).
+    /// Grains closer than the gap to their own periodic image (must be 0).
     pub self_images: usize,
 }
 
 impl Verification {
-    /// No overlap of any kind.
+    /// No overlap of any kind, and the gap kept everywhere.
     pub fn is_clean(&self) -> bool {
-        self.overlapping_pairs == 0 && self.wall_violations == 0 && self.self_images == 0
+        self.overlapping_pairs == 0
+            && self.gap_violations == 0
+            && self.wall_violations == 0
+            && self.self_images == 0
     }
 }

@@ -37,6 +37,14 @@
 //! The margin makes a relaxation finish as soon as the true overlaps are gone, long
 //! before the energy (taken at the inflated size) reaches zero. The result is checked
 //! afterwards by [`verify`], an exact test of every pair whose bounding spheres meet.
+//!
+//! # The gap
+//! With `packing.gap = g` every pair must keep μ ≥ 1 + g and every grain scaled by
+//! 1 + g must stay inside the walls. The loop has no path of its own for it: its
+//! shapes are the grains inflated by 1 + g (`State::new`), so a clean state of them is
+//! one of the grains keeping the gap (μ scales as 1 / size). Only the volumes, and so
+//! every fraction reported, are the grains' own; the grains are written at their own
+//! size, and [`verify`] checks them with the gap.
 
 mod effort;
 mod fire;
@@ -54,7 +62,7 @@ pub use effort::MIN_CYCLE_EFFORT;
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
 pub use job::{Counters, Job, PackError, Packing, Progress, Verification};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
-pub use verify::verify;
+pub use verify::{verify, MIN_GAP_REACH};
 
 use crate::scene::{Boundary, Rotation};
 use effort::{recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW};
@@ -62,7 +70,7 @@ use fire::{Context, Fire, Outcome};
 use neighbours::Neighbours;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use state::{State, WALL_MARGIN};
+use state::State;
 
 /// The random stream used for initial positions (the scene's sampling uses stream 0).
 const POSITION_STREAM: u64 = 1;
@@ -101,7 +109,7 @@ pub fn pack(
     // space-filling curve, so that neighbours sit close in memory.
     let order = spatial_order(&centres, domain.size);
     let sorted: Vec<GrainSpec> = order.iter().map(|&k| specs[k]).collect();
-    let mut state = State::new(&sorted, domain).map_err(|e| match e {
+    let mut state = State::new(&sorted, domain, params.gap).map_err(|e| match e {
         PackError::Grain { id, source } => PackError::Grain {
             id: order[id],
             source,
@@ -199,7 +207,15 @@ pub fn pack(
             snapshot = turned_back;
         }
     }
-    finish(&sorted, &order, &mut state, snapshot, reason, run.counters)
+    finish(
+        &sorted,
+        &order,
+        &mut state,
+        snapshot,
+        reason,
+        run.counters,
+        params.gap,
+    )
 }
 
 /// The grains' indices sorted by the Morton code of their centres (10 bits a
@@ -247,7 +263,7 @@ fn clean_scale(
         for (c, w) in state.centres.iter().zip(&state.half_widths) {
             for k in 0..3 {
                 let room = c[k].min(size[k] - c[k]).max(0.0);
-                t = t.min(room / (w[k] * (1.0 + WALL_MARGIN)));
+                t = t.min(room / (w[k] * (1.0 + state.wall_margin)));
             }
         }
     }
@@ -311,7 +327,8 @@ impl Snapshot {
     }
 }
 
-/// Writes the snapshot out as packed grains and checks it exactly.
+/// Writes the snapshot out as packed grains (the grains themselves, not inflated by
+/// the gap) and checks it exactly, with the `gap`.
 /// `specs` and the state are in the loop's order: `order[k]` is the input index of the
 /// loop's grain `k`.
 fn finish(
@@ -321,6 +338,7 @@ fn finish(
     snapshot: Snapshot,
     stop: StopReason,
     counters: Counters,
+    gap: f64,
 ) -> Result<Packing, PackError> {
     let scale = snapshot.scale;
     state.centres = snapshot.centres;
@@ -335,7 +353,7 @@ fn finish(
         grains[order[k]] = Some(PackedGrain::of_spec(order[k] as u32, spec, scale, *c, *q));
     }
     let grains: Vec<PackedGrain> = grains.into_iter().flatten().collect();
-    let verification = verify(&grains, &state.domain)?;
+    let verification = verify(&grains, &state.domain, gap)?;
     let fraction = state.fraction(scale);
     Ok(Packing {
         grains,

@@ -1,5 +1,6 @@
 //! The grains as the loop sees them: shapes at target size, moving centres and (when
-//! the scene lets them rotate) orientations.
+//! the scene lets them rotate) orientations. With a gap (`packing.gap`), the loop's
+//! shapes are the grains inflated by `1 + gap`, and the volumes are the grains' own.
 
 use super::grains::{turn_angle, turn_vector};
 use super::PackError;
@@ -9,6 +10,8 @@ use crate::scene::{Boundary, Domain, GrainSpec, Rotation};
 use rayon::prelude::*;
 
 /// Everything about the grains at scale 1 (target sizes), and their centres.
+/// The shapes (semi-axes, prepared shapes, half-widths, radii) are inflated by
+/// `1 + gap`: two of them apart means the grains themselves keep the gap.
 pub(crate) struct State {
     pub centres: Vec<[f64; 3]>,
     /// Orientations `[w, x, y, z]`; change only when the grains may rotate.
@@ -17,13 +20,13 @@ pub(crate) struct State {
     pub drawn: Vec<[f64; 4]>,
     /// The axis each grain may turn about under [`Rotation::Axis`].
     pub turn_axes: Vec<Option<[f64; 3]>>,
-    /// Target semi-axes.
+    /// Target semi-axes, inflated by `1 + gap`.
     pub axes: Vec<[f64; 3]>,
     /// Whether each grain is a sphere (three equal semi-axes): no ellipsoid maths.
     pub round: Vec<bool>,
     /// Prepared shapes at their target size and current orientation.
     pub shapes: Vec<PreparedEllipsoid>,
-    /// Volumes at target size.
+    /// Volumes of the grains themselves (not inflated) at target size.
     pub volumes: Vec<f64>,
     /// Their sum.
     pub total_volume: f64,
@@ -31,12 +34,16 @@ pub(crate) struct State {
     pub half_widths: Vec<[f64; 3]>,
     /// The largest bounding radius at target size.
     pub max_bounding_radius: f64,
+    /// The relative margin kept from the walls ([`WALL_MARGIN`], plus
+    /// [`INFLATION_ROUNDING`] with a gap).
+    pub wall_margin: f64,
     pub domain: Domain,
     pub box_shape: BoxShape,
 }
 
 impl State {
-    pub fn new(specs: &[GrainSpec], domain: &Domain) -> Result<Self, PackError> {
+    /// The grains of `specs` in `domain`, their shapes inflated by `1 + gap`.
+    pub fn new(specs: &[GrainSpec], domain: &Domain, gap: f64) -> Result<Self, PackError> {
         if specs.is_empty() {
             return Err(PackError::Empty);
         }
@@ -50,7 +57,10 @@ impl State {
             quaternions: specs.iter().map(|s| s.quaternion).collect(),
             drawn: specs.iter().map(|s| s.quaternion).collect(),
             turn_axes: specs.iter().map(|s| s.turn_axis).collect(),
-            axes: specs.iter().map(|s| s.semi_axes).collect(),
+            axes: specs
+                .iter()
+                .map(|s| s.semi_axes.map(|a| a * (1.0 + gap)))
+                .collect(),
             round: specs
                 .iter()
                 .map(|s| s.semi_axes.iter().all(|&a| a == s.semi_axes[0]))
@@ -60,6 +70,11 @@ impl State {
             total_volume: 0.0,
             half_widths: Vec::with_capacity(n),
             max_bounding_radius: 0.0,
+            wall_margin: if gap > 0.0 {
+                WALL_MARGIN + INFLATION_ROUNDING
+            } else {
+                WALL_MARGIN
+            },
             domain: *domain,
             box_shape,
         };
@@ -163,20 +178,26 @@ impl State {
         }
     }
 
-    /// Whether grain `i` at scale `s` lies inside the walls with the [`WALL_MARGIN`].
+    /// Whether grain `i` at scale `s` lies inside the walls with the wall margin.
     pub fn inside_walls(&self, i: usize, s: f64) -> bool {
         let (c, w, size) = (self.centres[i], self.half_widths[i], self.domain.size);
         (0..3).all(|k| {
-            let half = s * w[k] * (1.0 + WALL_MARGIN);
+            let half = s * w[k] * (1.0 + self.wall_margin);
             c[k] >= half && c[k] <= size[k] - half
         })
     }
 }
 
-/// Relative margin kept between a grain and a wall, so that the rounding of
-/// `c ± s·√Q_kk` never puts a grain a hair outside: `4 ε` per the three roundings.
 /// Turned grains one rayon task prepares at least: preparing one shape is too little
 /// work to be worth a task of its own.
 const TURNS_PER_TASK: usize = 64;
 
+/// Relative margin kept between a grain and a wall, so that the rounding of
+/// `c ± s·√Q_kk` never puts a grain a hair outside: `4 ε` per the three roundings.
 pub(crate) const WALL_MARGIN: f64 = 4.0 * f64::EPSILON;
+
+/// Added to [`WALL_MARGIN`] with a gap: the loop's half-widths come from semi-axes
+/// multiplied by `1 + gap` (one rounding, half an ε after the square root), and the
+/// final check multiplies the grain's own half-width by `1 + gap` (one more):
+/// `2 ε`, doubled for room.
+pub(crate) const INFLATION_ROUNDING: f64 = 4.0 * f64::EPSILON;

@@ -109,10 +109,13 @@ pub enum RunError {
     Pack(#[source] PackError),
     /// The exact check found overlaps in the loop's result: a bug, never written.
     #[error(
-        "the packing failed its final overlap check ({} overlapping pairs, {} wall \
-         violations, {} grains meeting their own image; min μ² = {:e}); nothing is \
-         written. This is a bug: please report it with the scene and seed",
+        "the packing failed its final overlap check ({} overlapping pairs, {} pairs \
+         closer than the gap {}, {} wall violations, {} grains meeting their own image; \
+         min μ² = {:e}); nothing is written. This is a bug: please report it with the \
+         scene and seed",
         .0.overlapping_pairs,
+        .0.gap_violations,
+        .0.gap,
         .0.wall_violations,
         .0.self_images,
         .0.min_mu2

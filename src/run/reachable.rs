@@ -23,10 +23,13 @@ pub struct Drawn {
     /// slender ones well below spheres), so [`Drawn::spheres`] says whether it applies.
     /// It is the density compression and relaxation reach; the swaps of effort's cycles
     /// (`packing.unjam`) pass it where sizes differ (lognormal spheres, σ = 0.25: 0.683
-    /// against 0.664).
+    /// against 0.664). With a gap (`packing.gap`) the grains pack as if inflated by
+    /// `1 + gap`, so the estimate is the inflated grains' divided by `(1 + gap)³`.
     pub reachable_fraction: f64,
     /// Whether every grain is a sphere, so that the estimate applies as it stands.
     pub spheres: bool,
+    /// The scene's `packing.gap`.
+    pub gap: f64,
 }
 
 impl Drawn {
@@ -43,8 +46,10 @@ impl Drawn {
                 GrainCount::Exactly(_) => scene.expected_fraction(),
             },
             drawn_fraction: volume / scene.domain.volume(),
-            reachable_fraction: random_close_packing(&diameters).unwrap_or(f64::NAN),
+            reachable_fraction: random_close_packing(&diameters).unwrap_or(f64::NAN)
+                / (1.0 + scene.packing.gap).powi(3),
             spheres: (specs.iter()).all(|s| s.semi_axes.iter().all(|&a| a == s.semi_axes[0])),
+            gap: scene.packing.gap,
         }
     }
 

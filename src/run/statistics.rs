@@ -226,9 +226,12 @@ mod tests {
             stop: StopReason::TargetReached,
             counters: Counters::default(),
             verification: Verification {
+                gap: 0.0,
                 checked_pairs: 0,
                 overlapping_pairs: 0,
+                gap_violations: 0,
                 min_mu2: f64::INFINITY,
+                min_gap: f64::INFINITY,
                 wall_violations: 0,
                 self_images: 0,
             },

@@ -32,6 +32,14 @@ pub struct PackingParams {
     /// `effort` ≥ 1.5): see [`Unjam`]. Default [`Unjam::Swap`]: at next to no cost where
     /// there is nothing to swap, much denser where grains differ.
     pub unjam: Unjam,
+    /// The smallest gap kept between grains, as a fraction of each pair's size: every
+    /// pair keeps a Perram–Wertheim contact factor μ ≥ 1 + `gap` (the two grains, each
+    /// scaled by 1 + `gap` about its centre, would at most touch), and every grain
+    /// scaled by 1 + `gap` stays inside the walls of a walled box. Two spheres are then
+    /// at least `gap · (r₁ + r₂)` apart, surface to surface. The loop packs the grains
+    /// inflated by 1 + `gap`; every fraction it reports is of the grains themselves.
+    /// At least 0; default 0.
+    pub gap: f64,
 }
 
 impl Default for PackingParams {
@@ -44,6 +52,7 @@ impl Default for PackingParams {
             restore: true,
             effort: 1.0,
             unjam: Unjam::Swap,
+            gap: 0.0,
         }
     }
 }

@@ -78,10 +78,19 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     let (packing, statistics) = (&result.packing, &result.statistics);
     if !options.quiet {
         let d = &result.drawn;
+        let v = &packing.verification;
+        let kept = if v.gap > 0.0 {
+            format!(
+                "none closer than packing.gap = {} (smallest gap {:.4})",
+                v.gap, v.min_gap
+            )
+        } else {
+            "none overlapping".to_owned()
+        };
         eprintln!(
             "pack: {} grains, packing fraction {:.4} reached (requested {:.4}, drawn {:.4}; \
              random close packing of spheres of these sizes ≈ {:.3}), {} after {} steps in \
-             {:.2} s; {} pairs checked, none overlapping",
+             {:.2} s; {} pairs checked, {kept}",
             packing.grains.len(),
             statistics.packing_fraction,
             d.requested_fraction,
@@ -137,6 +146,14 @@ fn warn_unreachable(d: &Drawn, swaps: bool) {
         caveat.push_str(
             "; the swaps of packing.unjam can pass it by a few percent where sizes differ",
         );
+    }
+    if d.gap > 0.0 {
+        caveat.push_str(&format!(
+            ", divided by (1 + packing.gap)³ = {:.4}: the grains pack as if inflated by \
+             1 + {}",
+            (1.0 + d.gap).powi(3),
+            d.gap
+        ));
     }
     eprintln!(
         "pack: warning: the drawn grains fill {:.4} of the box at full size, but random \

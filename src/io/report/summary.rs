@@ -8,8 +8,8 @@ use crate::run::{PhaseStatistics, RunResult, TurnStatistics};
 use crate::scene::{Boundary, Scene};
 use serde::Serialize;
 
-/// The contents of `summary.json`. Field names are the JSON keys; `min_mu2` and the
-/// statistics of a phase without grains are `null`.
+/// The contents of `summary.json`. Field names are the JSON keys; `min_mu2`, `min_gap`
+/// and the statistics of a phase without grains may be `null`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary<'a> {
     /// `CARGO_PKG_VERSION` of the program that wrote it.
@@ -45,6 +45,14 @@ pub struct Summary<'a> {
     pub checked_pairs: usize,
     /// Smallest μ² over the checked pairs; `null` when there are none.
     pub min_mu2: Option<f64>,
+    /// The gap asked for (`packing.gap`), checked by the final verification: every
+    /// pair has μ ≥ 1 + `gap`, every grain scaled by 1 + `gap` is inside the walls.
+    pub gap: f64,
+    /// The smallest gap reached ([`Verification::min_gap`](crate::packing::Verification)):
+    /// the least `√μ² − 1` over the pairs and, in a walled box, the least room to a
+    /// wall; at least `gap`, exact up to 5 % beyond it. `null` when no pair is that close
+    /// and there is no wall.
+    pub min_gap: Option<f64>,
     /// Grains crossing a wall of a walled box (0 in anything written).
     pub wall_violations: usize,
     /// Threads the loop ran on.
@@ -131,6 +139,8 @@ impl<'a> Summary<'a> {
             overlapping_pairs: v.overlapping_pairs,
             checked_pairs: v.checked_pairs,
             min_mu2: v.min_mu2.is_finite().then_some(v.min_mu2),
+            gap: v.gap,
+            min_gap: v.min_gap.is_finite().then_some(v.min_gap),
             wall_violations: v.wall_violations,
             threads: result.threads,
             timings: TimingSummary {

@@ -210,6 +210,7 @@ pub(crate) struct RawPacking {
     pub restore: Opt<bool>,
     pub effort: Opt<f64>,
     pub unjam: Opt<String>,
+    pub gap: Opt<f64>,
 }
 
 /// `[output]`.

@@ -29,7 +29,7 @@ fn two_grains(domain: &Domain) -> State {
         grain([3.0, 1.0, 0.7], [0.9, 0.2, -0.3, 0.1]),
         grain([2.0, 1.5, 0.5], [0.4, -0.5, 0.6, 0.3]),
     ];
-    let mut state = State::new(&specs, domain).unwrap();
+    let mut state = State::new(&specs, domain, 0.0).unwrap();
     state.centres = vec![[10.0, 10.0, 10.0], [11.2, 10.5, 9.8]];
     state
 }
@@ -155,7 +155,7 @@ fn two_spheres_feel_twice_their_overlap() {
         grain([1.0; 3], [1.0, 0.0, 0.0, 0.0]),
         grain([2.0; 3], [1.0, 0.0, 0.0, 0.0]),
     ];
-    let mut state = State::new(&specs, &domain).unwrap();
+    let mut state = State::new(&specs, &domain, 0.0).unwrap();
     state.centres = vec![[5.0, 5.0, 5.0], [7.5, 5.0, 5.0]];
     let mut f = Forces::default();
     f.evaluate(&state, &PAIR, 1, 1.0, false);

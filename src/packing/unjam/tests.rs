@@ -45,7 +45,7 @@ fn drawn(text: &str) -> (Scene, Vec<GrainSpec>) {
 /// The drawn grains of `text` at random positions.
 fn scattered(text: &str) -> State {
     let (scene, specs) = drawn(text);
-    let mut state = State::new(&specs, &scene.domain).unwrap();
+    let mut state = State::new(&specs, &scene.domain, 0.0).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let size = scene.domain.size;
     for c in &mut state.centres {

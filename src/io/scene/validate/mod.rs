@@ -3,6 +3,7 @@
 
 mod axis;
 mod fisher;
+mod gap;
 mod grain;
 mod measured;
 mod mixed;
@@ -77,7 +78,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         solver::solids(&src, &raw, &phases, &matrix, fill)?;
     }
 
-    Ok(Scene {
+    let scene = Scene {
         seed: raw.seed.as_ref().map_or(0, |s| *s.get_ref()),
         count,
         domain,
@@ -86,7 +87,9 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         homogenization: solver::homogenization(&src, &raw, &output)?,
         output,
         matrix,
-    })
+    };
+    gap::fits(&src, raw.packing.as_ref(), &scene)?;
+    Ok(scene)
 }
 
 fn domain(src: &Source, raw: &Spanned<RawBox>) -> Result<Domain, SceneError> {
@@ -377,6 +380,9 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
                 ),
             ));
         }
+    }
+    if let Some(v) = &raw.gap {
+        params.gap = gap::value(src, v)?;
     }
     Ok(params)
 }

@@ -1,0 +1,64 @@
+//! `packing.gap`: its own range, and whether the grains inflated by it still fit.
+
+use super::super::error::{SceneError, Source};
+use super::super::raw::RawPacking;
+use crate::scene::{Phase, Scene, MAX_TARGET_FRACTION};
+use toml::Spanned;
+
+/// The gap as written: a finite number, at least 0.
+pub(super) fn value(src: &Source, raw: &Spanned<f64>) -> Result<f64, SceneError> {
+    let gap = *raw.get_ref();
+    if !(gap.is_finite() && gap >= 0.0) {
+        return Err(src.invalid_at(
+            "packing.gap",
+            raw,
+            "must be a finite number, at least 0 (a fraction of each pair's size)",
+        ));
+    }
+    Ok(gap)
+}
+
+/// The grains are packed inflated by `1 + gap`, so the gap is too large to mean
+/// anything when the inflated grains could not be packed at all: when they would fill
+/// more of the box than the densest packing of ellipsoids ([`MAX_TARGET_FRACTION`]),
+/// or when the longest of them would not fit in the box (it would meet its own
+/// periodic image, or both walls).
+pub(super) fn fits(
+    src: &Source,
+    raw: Option<&Spanned<RawPacking>>,
+    scene: &Scene,
+) -> Result<(), SceneError> {
+    let Some(at) = raw.and_then(|r| r.get_ref().gap.as_ref()) else {
+        return Ok(());
+    };
+    let gap = scene.packing.gap;
+    let inflation = 1.0 + gap;
+    let fraction = scene.expected_fraction();
+    let inflated = fraction * inflation.powi(3);
+    if inflated > MAX_TARGET_FRACTION {
+        let largest = (MAX_TARGET_FRACTION / fraction).cbrt() - 1.0;
+        return Err(src.invalid_at(
+            "packing.gap",
+            at,
+            format!(
+                "the grains inflated by 1 + gap would fill {inflated:.3} of the box (the grains \
+                 fill {fraction:.3}), beyond the densest packing of ellipsoids \
+                 ({MAX_TARGET_FRACTION}): the gap can be at most {largest:.4} here"
+            ),
+        ));
+    }
+    let longest = (scene.phases.iter().map(Phase::max_length)).fold(0.0, f64::max);
+    let side = scene.domain.min_side();
+    if inflation * longest >= side {
+        return Err(src.invalid_at(
+            "packing.gap",
+            at,
+            format!(
+                "the longest grain ({longest:.4} end to end) inflated by 1 + gap does not fit in \
+                 the box, whose shortest side is {side}: the gap must be below {:.4} here",
+                side / longest - 1.0
+            ),
+        ));
+    }
+    Ok(())
+}
