@@ -54,7 +54,10 @@ pub use output::{
 pub use params::{PackingParams, Rotation, Unjam};
 pub use shape::{triaxial_semi_axes, ThirdRatio, Triaxial};
 use std::f64::consts::PI;
-pub use units::{LengthUnit, StressUnit, Units, PLAUSIBLE_BOX_M, PLAUSIBLE_MODULUS_PA};
+pub use units::{
+    LengthUnit, StressUnit, Units, PLAUSIBLE_BOX_M, PLAUSIBLE_CRYSTAL_STIFFNESS_PA,
+    PLAUSIBLE_MODULUS_PA,
+};
 
 /// The largest `target_fraction` accepted, and the largest expected packing fraction
 /// of a `grains` count: 0.7707, the densest known packing of congruent ellipsoids

@@ -158,6 +158,14 @@ pub const PLAUSIBLE_BOX_M: (f64, f64) = (1e-9, 10.0);
 /// `E = 200` in `"Pa"` is more likely GPa.
 pub const PLAUSIBLE_MODULUS_PA: (f64, f64) = (1e3, 2e12);
 
+/// The diagonal stiffness constants (`C_11`, `C_44`, …, in pascals) a crystal is
+/// expected to have, which DAMASK's phases are: from 0.1 GPa, ten times below the
+/// softest of the elements (caesium, C_44 ≈ 1.5 GPa), to 2 TPa (diamond's C_11 is
+/// 1.08 TPa). A constant outside is allowed, with a warning naming its key: a
+/// `[phase.damask]` table is in pascals whatever `[units]` says, and `C_11 = 250000`
+/// is more likely MPa.
+pub const PLAUSIBLE_CRYSTAL_STIFFNESS_PA: (f64, f64) = (1e8, 2e12);
+
 #[cfg(test)]
 mod tests {
     use super::*;

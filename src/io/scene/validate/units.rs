@@ -2,7 +2,10 @@
 
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawElastic, RawScene};
-use crate::scene::{Domain, LengthUnit, StressUnit, Units, PLAUSIBLE_BOX_M, PLAUSIBLE_MODULUS_PA};
+use crate::scene::{
+    Domain, LengthUnit, StressUnit, Units, PLAUSIBLE_BOX_M, PLAUSIBLE_CRYSTAL_STIFFNESS_PA,
+    PLAUSIBLE_MODULUS_PA,
+};
 use std::ops::Range;
 use toml::Spanned;
 
@@ -37,28 +40,32 @@ fn expected<T>(names: &[(&str, T)]) -> String {
 /// Warnings about values the scene's units make implausible: a box side outside
 /// [`PLAUSIBLE_BOX_M`] once in metres, a Young's modulus (`[phase.elastic]`,
 /// `[matrix.elastic]`) outside [`PLAUSIBLE_MODULUS_PA`] once in pascals, and a
-/// stiffness constant `C_…` of a `[phase.damask]` or `[matrix.damask]` entry's
-/// `mechanical.elastic` outside it as written (DAMASK reads pascals whatever
+/// diagonal stiffness constant (`C_11` … `C_66`) of a `[phase.damask]` or
+/// `[matrix.damask]` entry's `mechanical.elastic` outside
+/// [`PLAUSIBLE_CRYSTAL_STIFFNESS_PA`] as written (DAMASK reads pascals whatever
 /// `[units]` says). Each names the file, line, key and value.
 pub(super) fn warnings(src: &Source, raw: &RawScene, units: Units, domain: &Domain) -> Vec<String> {
     let mut out = Vec::new();
     let (lo, hi) = PLAUSIBLE_BOX_M;
     let length = units.length.symbol();
     let size = &raw.domain.get_ref().size;
-    for (axis, &side) in ["x", "y", "z"].iter().zip(&domain.size) {
-        let metres = units.length.to_si(side);
-        if !(lo..=hi).contains(&metres) {
-            out.push(warning(
-                src,
-                "box.size",
-                size.span(),
-                format!(
-                    "the side along {axis} is {side} {length} = {metres:e} m, outside \
-                     [{lo:e}, {hi:e}] m: is units.length (\"{length}\") what the lengths \
-                     are in?"
-                ),
-            ));
-        }
+    let metres = domain.size.map(|side| units.length.to_si(side));
+    if metres.iter().any(|m| !(lo..=hi).contains(m)) {
+        out.push(warning(
+            src,
+            "box.size",
+            size.span(),
+            format!(
+                "{:?} {length}{}, outside [{lo:e}, {hi:e}] m: is units.length \
+                 (\"{length}\") what the lengths are in?",
+                domain.size,
+                if units.length == LengthUnit::Metre {
+                    String::new()
+                } else {
+                    format!(" = [{:e}, {:e}, {:e}] m", metres[0], metres[1], metres[2])
+                }
+            ),
+        ));
     }
     let stress = units.stress;
     let elastic = |key: String, e: &RawElastic, out: &mut Vec<String>| {
@@ -70,9 +77,13 @@ pub(super) fn warnings(src: &Source, raw: &RawScene, units: Units, domain: &Doma
                 &format!("{key}.E"),
                 e.young.span(),
                 format!(
-                    "{given} {} = {pascals:e} Pa, {why}: is units.stress (\"{}\") what it \
-                     is in?",
+                    "{given} {}{}, {why}: is units.stress (\"{}\") what it is in?",
                     stress.symbol(),
+                    if stress == StressUnit::Pascal {
+                        String::new()
+                    } else {
+                        format!(" = {pascals:e} Pa")
+                    },
                     stress.symbol()
                 ),
             ));
@@ -90,10 +101,16 @@ pub(super) fn warnings(src: &Source, raw: &RawScene, units: Units, domain: &Doma
                 toml::Value::Integer(v) => *v as f64,
                 _ => continue,
             };
-            if !name.starts_with("C_") {
+            // Off-diagonal constants may be small or negative in a real crystal.
+            if !DIAGONAL.contains(&name.as_str()) {
                 continue;
             }
-            if let Some(why) = implausible_modulus(pascals) {
+            let (lo, hi) = PLAUSIBLE_CRYSTAL_STIFFNESS_PA;
+            if !(lo..=hi).contains(&pascals) {
+                let why = format!(
+                    "outside [{lo:e}, {hi:e}] Pa, the diagonal stiffness constants of \
+                     crystals from caesium to diamond"
+                );
                 out.push(warning(
                     src,
                     &format!("{key}.mechanical.elastic.{name}"),
@@ -126,6 +143,9 @@ pub(super) fn warnings(src: &Source, raw: &RawScene, units: Units, domain: &Doma
     }
     out
 }
+
+/// The diagonal stiffness constants of a DAMASK `Hooke` phase.
+const DIAGONAL: [&str; 6] = ["C_11", "C_22", "C_33", "C_44", "C_55", "C_66"];
 
 /// Why a modulus of `pascals` is implausible, if it is.
 fn implausible_modulus(pascals: f64) -> Option<String> {
