@@ -318,3 +318,50 @@ fn a_unit_that_is_not_one_is_an_error_naming_its_key_and_value() {
     .unwrap();
     pack_ok(&dir, &["scene.toml", "--quiet"]);
 }
+
+#[test]
+fn the_placeholder_phase_is_in_pascals_whatever_the_units() {
+    // A phase without [phase.elastic] or [phase.damask]: DAMASK's placeholder, E = 200
+    // GPa and ν = 0.3, so C_11 = E(1 − ν)/((1 + ν)(1 − 2ν)) = 2.69e11 Pa in every case.
+    let mut files = Vec::new();
+    for (length, stress) in [("um", "MPa"), ("mm", "GPa"), ("m", "Pa")] {
+        let dir = scratch("units", &format!("placeholder_{length}_{stress}"));
+        let text = small(&format!(
+            "[units]\nlength = \"{length}\"\nstress = \"{stress}\""
+        ))
+        .replace("[output]", "[output]\nrve_resolution = 4\ndamask = true")
+        .replace("[40.0, 40.0, 40.0]", "[40e-6, 40e-6, 40e-6]")
+        .replace("value = 5.0", "value = 5e-6");
+        // The same box and grains in every unit: scaled from metres.
+        let per_metre = match length {
+            "um" => 1e6,
+            "mm" => 1e3,
+            _ => 1.0,
+        };
+        let text = text
+            .replace("40e-6", &format!("{:e}", 40e-6 * per_metre))
+            .replace("5e-6", &format!("{:e}", 5e-6 * per_metre));
+        std::fs::write(dir.join("scene.toml"), text).unwrap();
+        pack_ok(&dir, &["scene.toml", "--quiet"]);
+        files.push(std::fs::read_to_string(dir.join("out/material.yaml")).unwrap());
+    }
+    let c11: f64 = files[0]
+        .split("C_11: ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let want = 200e9 * 0.7 / (1.3 * 0.4);
+    // E(1 − ν)/((1 + ν)(1 − 2ν)) against K + 4μ/3: a few roundings apart.
+    assert!((c11 / want - 1.0).abs() < 8.0 * f64::EPSILON, "{c11}");
+    assert!(files[0].contains("PLACEHOLDER"));
+    assert!(
+        files
+            .iter()
+            .all(|f| f.split("C_11: ").nth(1) == files[0].split("C_11: ").nth(1)),
+        "the placeholder differs between unit systems"
+    );
+}
