@@ -12,8 +12,8 @@ mod common;
 
 use grainpack::io::voxel::{grain_report, voxelise, write_sections_png, write_vti};
 use grainpack::packing::PackedGrain;
-use grainpack::scene::RveFill;
 use grainpack::scene::Scene;
+use grainpack::scene::{LengthUnit, RveFill};
 use std::time::Instant;
 
 const SCENE: &str = "configs/kanapy_elongated.toml";
@@ -56,7 +56,7 @@ fn main() {
             let mut bytes = Vec::new();
             let t_vti = median(|| {
                 bytes.clear();
-                write_vti(&grid, None, &mut bytes).unwrap();
+                write_vti(&grid, LengthUnit::Micrometre, None, &mut bytes).unwrap();
             });
             if let Ok(dir) = std::env::var("VOXEL_BENCH_OUT") {
                 let name = format!("{n}_{fill:?}").to_lowercase();

@@ -2,8 +2,8 @@
 
 mod support;
 
-use grainpack::io::voxel::{voxelise, write_sections_png, write_vti};
-use grainpack::scene::{quaternion_to_euler, RveFill};
+use grainpack::io::voxel::{voxelise, write_sections_png, write_vti, EULER_ARRAYS};
+use grainpack::scene::{quaternion_to_euler, LengthUnit, RveFill};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use support::voxel::*;
@@ -29,7 +29,8 @@ fn vti_decodes_to_the_grid() {
         })
         .collect();
     let mut out = Vec::new();
-    write_vti(&grid, Some(&orientations), &mut out).unwrap();
+    // The box in mm; the file in m, as DAMASK reads it.
+    write_vti(&grid, LengthUnit::Millimetre, Some(&orientations), &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
     assert!(text.contains(r#"WholeExtent="0 31 0 23 0 37""#));
     let spacing: Vec<f64> = text
@@ -45,8 +46,8 @@ fn vti_decodes_to_the_grid() {
     for a in 0..3 {
         assert_eq!(
             spacing[a],
-            size[a] / grid.cells[a] as f64,
-            "spacing printed exactly"
+            size[a] / 1e3 / grid.cells[a] as f64,
+            "spacing in metres, printed exactly"
         );
     }
     let lines: Vec<&str> = text.lines().collect();
@@ -58,19 +59,23 @@ fn vti_decodes_to_the_grid() {
             .collect();
         assert_eq!(&got, want, "{name}");
     }
-    let bytes = array_bytes(&lines, "euler_angles");
-    let got: Vec<f64> = bytes
-        .chunks(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-        .collect();
-    assert_eq!(got.len(), 3 * grid.material.len());
-    for (cell, &m) in got.chunks(3).zip(&grid.material) {
-        // Each grain's Bunge angles in degrees (as grains.csv has them), the matrix's 0.
-        let want = orientations
-            .get(m as usize)
-            .map_or([0.0; 3], |&q| quaternion_to_euler(q).map(f64::to_degrees));
-        assert_eq!(cell, want, "material {m}");
+    // Each cell's Bunge angles in degrees (as grains.csv has them), the matrix's 0, as
+    // three scalar arrays (DAMASK 3.0's GeomGrid.load takes only scalars).
+    for (a, name) in EULER_ARRAYS.iter().enumerate() {
+        let bytes = array_bytes(&lines, name);
+        let got: Vec<f64> = bytes
+            .chunks(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        assert_eq!(got.len(), grid.material.len());
+        for (&cell, &m) in got.iter().zip(&grid.material) {
+            let want = orientations
+                .get(m as usize)
+                .map_or(0.0, |&q| quaternion_to_euler(q)[a].to_degrees());
+            assert_eq!(cell, want, "{name} of material {m}");
+        }
     }
+    assert!(!text.contains("NumberOfComponents"), "scalars only");
 }
 
 /// The bytes of the cell array `name`, read the way DAMASK's Fortran reader reads it

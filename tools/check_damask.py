@@ -6,15 +6,19 @@ own Python package (damask, pinned in tools/requirements-exports.txt).
 
 - `material.yaml`: `damask.ConfigMaterial.load` gives a complete and valid
   configuration; its number of materials is `summary.json`'s `rve.materials` and covers
-  every id of `rve.vti` (read by `damask.GeomGrid.load`, whose cells and size are the
-  summary's); entry k has grain k's phase (grains.csv) and its orientation `O` equals the
+  every id of `rve.vti` (read by `damask.GeomGrid.load`, whose cells are the summary's
+  and whose size is the summary's box converted to metres from its `units.length`);
+  every isotropic Hooke phase written from `[phase.elastic]` has C_11 in pascals
+  (at least STIFFNESS_PA_MIN); entry k has grain k's phase (grains.csv) and its orientation `O` equals the
   CSV's o0..o3 and DAMASK's own quaternion of the CSV's Bunge Euler angles
   (`damask.Rotation.from_Euler_angles`, degrees) to ORIENTATION_TOL; the matrix, if
   any, is last.
 - `rve.vti` as DAMASK reads it: `damask.VTK.load` sees its cell arrays, and the
   `material` array equals `GeomGrid.load`'s (x fastest); when the run wrote
-  orientations, the 3-component `euler_angles` array holds each cell's material's Bunge
-  angles: the CSV's phi1, Phi, phi2 for a grain, exactly, 0 for the matrix. Each
+  orientations, the scalar arrays `phi1`, `Phi`, `phi2` hold each cell's material's
+  Bunge angles: the CSV's phi1, Phi, phi2 for a grain, exactly, 0 for the matrix; no
+  array has more than one component (damask 3.0.x's `GeomGrid.load` reshapes each
+  to the cells). Each
   array's base64 text is alone on the line after its `<DataArray>` tag, the layout
   DAMASK's Fortran reader (src/grid/VTI.f90, `VTI_readDataset_raw`) takes.
 - `centers.vtp` and `grains.vtu` (PyVista): the point data and cell data
@@ -37,6 +41,11 @@ from checklist import Checklist
 ORIENTATION_TOL = 1e-12
 # Box size from the grid's spacing × cells, against the summary's (printed to 17 digits).
 SIZE_TOL = 1e-12
+# Units of length per metre, by summary.json's `units.length`.
+PER_METRE = {"m": 1.0, "mm": 1e3, "um": 1e6, "nm": 1e9}
+# The least C_11 a crystal's Hooke phase has in pascals: caesium's is 2.5 GPa, so a
+# value below 1e8 was left in MPa or GPa (as DAMASK would read it as pascals).
+STIFFNESS_PA_MIN = 1e8
 # Characters of base64 text.
 BASE64 = set("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/=")
 
@@ -52,8 +61,15 @@ def main():
     grid = damask.GeomGrid.load(os.path.join(out, "rve.vti"))
     rve = summary["rve"]
     check(list(grid.cells) == rve["cells"], f"rve.vti cells {grid.cells} != {rve['cells']}")
-    check(np.allclose(grid.size, summary["box"], rtol=SIZE_TOL, atol=0),
-          f"rve.vti size {grid.size} != box {summary['box']}")
+    unit = summary["units"]["length"]
+    metres = np.array(summary["box"], dtype=float) / PER_METRE[unit]
+    check(np.allclose(grid.size, metres, rtol=SIZE_TOL, atol=0),
+          f"rve.vti size {grid.size} m != box {summary['box']} {unit} = {metres} m")
+    for name, phase in cfg["phase"].items():
+        elastic = phase.get("mechanical", {}).get("elastic", {})
+        if elastic.get("type") == "Hooke" and "C_11" in elastic:
+            check(float(elastic["C_11"]) >= STIFFNESS_PA_MIN,
+                  f"phase {name}: C_11 = {elastic['C_11']} is not in pascals")
     materials = cfg["material"]
     check(len(materials) == rve["materials"],
           f"{len(materials)} materials in material.yaml, {rve['materials']} in the RVE")
@@ -98,11 +114,15 @@ def main():
     labels = vti.labels["Cell Data"]
     check(np.array_equal(vti.get("material").reshape(-1), grid.material.reshape(-1, order="F")),
           "rve.vti: damask.VTK's material array != GeomGrid.load's")
-    if "euler_angles" in labels:
+    for label in labels:
+        check(vti.get(label).ndim == 1 or vti.get(label).shape[1:] == (1,),
+              f"rve.vti: cell array {label} has {vti.get(label).shape[1:]} components")
+    if "phi1" in labels:
         m = vti.get("material").reshape(-1)
         want = np.vstack([csv_e, np.zeros((len(materials) - len(grains), 3))])[m]
-        check(np.array_equal(vti.get("euler_angles"), want),
-              "rve.vti euler_angles != grains.csv phi1, Phi, phi2 of each cell's material")
+        for a, name in enumerate(("phi1", "Phi", "phi2")):
+            check(np.array_equal(vti.get(name).reshape(-1), want[:, a]),
+                  f"rve.vti {name} != grains.csv {name} of each cell's material")
     with open(os.path.join(out, "rve.vti")) as f:
         lines = f.read().splitlines()
     for i, line in enumerate(lines):

@@ -17,7 +17,8 @@ OUT_DIR is a directory `pack` wrote. The grains of `grains.csv` are the referenc
   per grain at the CSV centre, with the semi-axes and the tensors S = R diag(a) R^T and
   Q = S^2 of the CSV's quaternion.
 - `rve.vti`, if present, read with DAMASK (`damask.GeomGrid.load`) and PyVista: a grid
-  of the box's size at the origin, with integer cell data `material` and `phase`, x
+  of the box's size in metres (the box in `summary.json`'s `units.length`, converted)
+  at the origin, with integer cell data `material` and `phase`, x
   fastest. The voxel at each large grain's centre belongs to that grain. With
   `rve_fill = "grains"` every voxel belongs to a grain.
 - `rve_grains.csv`, if the RVE is there: a row per grain whose voxel counts are those of
@@ -35,6 +36,9 @@ import os
 import sys
 
 import numpy as np
+
+# Units of length per metre, by summary.json's `units.length`.
+PER_METRE = {"m": 1.0, "mm": 1e3, "um": 1e6, "nm": 1e9}
 
 # Relative tolerance of figures computed two ways in double precision (the brief's
 # 1e-9 for the equivalent diameter; rounding alone is ~1e-15).
@@ -222,7 +226,7 @@ def check_vtp(path, g):
     print(f"centers.vtp (PyVista): {n} points at the CSV centres, tensors agree")
 
 
-def check_vti(path, g, box, n_phases, fill):
+def check_vti(path, g, box, n_phases, fill, unit):
     import damask
     import pyvista as pv
 
@@ -230,7 +234,8 @@ def check_vti(path, g, box, n_phases, fill):
     grid = damask.GeomGrid.load(path)
     cells = np.array(grid.cells)
     material = np.asarray(grid.material)
-    check(close(grid.size, box, 1e-12), f"RVE size {grid.size} != box {box}")
+    metres = box / PER_METRE[unit]
+    check(close(grid.size, metres, 1e-12), f"RVE size {grid.size} m != box {box} {unit} = {metres} m")
     check(np.all(np.asarray(grid.origin) == 0), f"RVE origin {grid.origin} != 0")
     # DAMASK reads other cell data as floats: the types come from PyVista.
     mesh = pv.read(path)
@@ -250,7 +255,7 @@ def check_vti(path, g, box, n_phases, fill):
     check(phase.max() < n_phases + extra, f"phase {phase.max()} for {n_phases} phases")
     # x fastest, spacing L/N: the voxel at the centre of a grain that holds the voxel's
     # whole half-diagonal belongs to it, under one numbering offset for all grains.
-    h = np.asarray(grid.size) / cells
+    h = box / cells  # in the scene's unit, as the CSV's centres
     big = np.flatnonzero(g["axes"].min(1) > 0.5 * np.linalg.norm(h))
     ijk = np.minimum((g["centre"][big] / h).astype(int), cells - 1)
     at = material[ijk[:, 0], ijk[:, 1], ijk[:, 2]]
@@ -316,7 +321,7 @@ def main():
     rve = os.path.join(out, "rve.vti")
     if os.path.exists(rve):
         fill = args.rve_fill or summary.get("rve", {}).get("fill", "grains")
-        check_vti(rve, g, box, n_phases, fill)
+        check_vti(rve, g, box, n_phases, fill, summary["units"]["length"])
     else:
         print("rve.vti: not written, not checked")
     table = os.path.join(out, "rve_grains.csv")

@@ -180,6 +180,24 @@ impl PyScene {
         self.inner.expected_count()
     }
 
+    /// The scene's units (`[units]`): `{"length": "um", "stress": "MPa"}` by default.
+    #[getter]
+    fn units(&self) -> std::collections::HashMap<&'static str, &'static str> {
+        let units = self.inner.units;
+        std::collections::HashMap::from([
+            ("length", units.length.symbol()),
+            ("stress", units.stress.symbol()),
+        ])
+    }
+
+    /// Values the scene's units make implausible (a modulus or a box side far outside
+    /// what they make likely), each naming the key and value as `pack` prints them;
+    /// the scene is valid all the same.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings.clone()
+    }
+
     /// The output directory of the scene (`output.dir`).
     #[getter]
     fn output_dir(&self) -> PathBuf {

@@ -131,3 +131,22 @@ def test_scenes_pickle_as_their_toml_and_are_validated_again(tmp_path):
         if a is not None:
             np.testing.assert_array_equal(gp.pack(copy_, seed=3, progress=False).centres, a.centres)
     assert gp.Scene.from_toml(EXAMPLE).toml == EXAMPLE.read_text()
+
+
+def test_units_are_read_repeated_in_the_summary_and_warned_about():
+    default = gp.Scene.from_toml(TOML)
+    assert default.units == {"length": "um", "stress": "MPa"} and default.warnings == []
+    stated = TOML + '[units]\nlength = "mm"\nstress = "GPa"\n'
+    scene = gp.Scene.from_dict({**SMALL_SCENE, "units": {"length": "mm", "stress": "GPa"}})
+    assert gp.Scene.from_toml(stated).units == {"length": "mm", "stress": "GPa"} == scene.units
+    packing = gp.pack(scene, progress=False)
+    assert packing.summary["units"] == {"length": "mm", "stress": "GPa"}
+    assert packing.summary["warnings"] == []
+    # A box of 30 m: allowed, with a warning naming the key, repeated in the summary.
+    big = gp.Scene.from_toml(TOML + '[units]\nlength = "m"\n')
+    assert len(big.warnings) == 1 and "box.size = [30.0, 30.0, 30.0]" in big.warnings[0]
+    assert gp.pack(big, progress=False).summary["warnings"] == big.warnings
+    # A unit that is not one is a SceneError naming the key.
+    with pytest.raises(gp.SceneError, match=r'units\.stress = "mpa"') as e:
+        gp.Scene.from_toml(TOML + '[units]\nstress = "mpa"\n')
+    assert e.value.key == "units.stress"

@@ -4,7 +4,7 @@
 /// positive definite exactly when `E > 0` and `−1 < ν < ½` ([`Elastic::check`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Elastic {
-    /// Young's modulus `E` (any unit; the deck's stresses are in it).
+    /// Young's modulus `E`, in the scene's stress unit ([`Units`](super::Units)).
     pub young: f64,
     /// Poisson's ratio `ν`.
     pub poisson: f64,

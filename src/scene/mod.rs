@@ -33,6 +33,7 @@ mod orientation;
 mod output;
 mod params;
 mod shape;
+mod units;
 
 use crate::laws::Distribution;
 pub use crystal::{
@@ -53,6 +54,10 @@ pub use output::{
 pub use params::{PackingParams, Rotation, Unjam};
 pub use shape::{triaxial_semi_axes, ThirdRatio, Triaxial};
 use std::f64::consts::PI;
+pub use units::{
+    LengthUnit, StressUnit, Units, PLAUSIBLE_BOX_M, PLAUSIBLE_CRYSTAL_STIFFNESS_PA,
+    PLAUSIBLE_MODULUS_PA,
+};
 
 /// The largest `target_fraction` accepted, and the largest expected packing fraction
 /// of a `grains` count: 0.7707, the densest known packing of congruent ellipsoids
@@ -85,6 +90,13 @@ pub struct Scene {
     /// DAMASK's homogenization of every material (`[homogenization]`); `None` for the
     /// default, [`Homogenization::single_crystal`].
     pub homogenization: Option<Homogenization>,
+    /// The units of the scene's lengths and stresses (`[units]`).
+    pub units: Units,
+    /// Values the scene may have but probably does not mean (a modulus or a box side
+    /// far outside what the stated units make plausible), each a message naming the
+    /// file, line, key and value; the run goes on, `pack` prints them and
+    /// `summary.json` lists them.
+    pub warnings: Vec<String>,
 }
 
 /// The one `homogenization` entry of `material.yaml` that every material uses: each
@@ -117,7 +129,7 @@ impl Homogenization {
 /// material after the grains in `material.yaml` and `rve.inp`.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Matrix {
-    /// Isotropic elastic constants (`[matrix.elastic]`).
+    /// Isotropic elastic constants (`[matrix.elastic]`), in the scene's units.
     pub elastic: Option<Elastic>,
     /// The matrix's DAMASK `phase` entry (`[matrix.damask]`), passed through.
     pub damask: Option<toml::Table>,
@@ -150,8 +162,8 @@ pub struct Phase {
     pub orientation: Orientation,
     /// The law of the grains' crystal orientations (`[phase.texture]`).
     pub texture: PhaseTexture,
-    /// Isotropic elastic constants (`[phase.elastic]`), for the Abaqus deck and
-    /// DAMASK's placeholder; `None` if not given.
+    /// Isotropic elastic constants (`[phase.elastic]`, in the scene's units), for the
+    /// Abaqus deck and DAMASK's Hooke phase; `None` if not given.
     pub elastic: Option<Elastic>,
     /// The phase's DAMASK `phase` entry (`[phase.damask]`), passed through to
     /// `material.yaml` as written; `None` for the documented placeholder.

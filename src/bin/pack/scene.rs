@@ -29,6 +29,10 @@ const PROGRESS_INTERVAL: Duration = Duration::from_millis(50);
 pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     let name = path.display().to_string();
     let mut scene = Scene::from_path(path).map_err(Failure::bad_input)?;
+    // Printed even with --quiet, as the other warnings: the run goes on.
+    for warning in &scene.warnings {
+        eprintln!("pack: warning: {warning}");
+    }
     if let Some(dir) = &options.out {
         scene.output.dir.clone_from(dir);
     }

@@ -15,6 +15,7 @@
 //! far node is the first (dependent) term of exactly one equation and never a term's
 //! image, so the equations are independent.
 
+use super::damask::PLACEHOLDER_ELASTIC;
 use super::names::{matrix_name, section_name};
 use crate::io::voxel::VoxelGrid;
 use crate::packing::PackedGrain;
@@ -41,7 +42,9 @@ const PER_LINE: usize = 16;
 /// `MATRIX`), node sets of the six faces (`X0`, `X1`, ...), twelve edges (`X0Y0`, ...)
 /// and eight corners (`X0Y0Z0`, ...), the reference nodes, the periodic equations
 /// (periodic box), a `*Material` and `*Solid Section` per phase from the scene's
-/// elastic constants, and a static step in uniaxial strain along x.
+/// elastic constants, and a static step in uniaxial strain along x. Every number is in
+/// the scene's units (`[units]`, named in a comment at the top): coordinates in
+/// `units.length`, moduli in `units.stress`.
 pub fn write_abaqus_deck(out: &mut dyn Write, scene: &Scene, grid: &VoxelGrid) -> io::Result<()> {
     let [nx, ny, nz] = grid.cells;
     let h = grid.spacing();
@@ -49,15 +52,22 @@ pub fn write_abaqus_deck(out: &mut dyn Write, scene: &Scene, grid: &VoxelGrid) -
     writeln!(out, "*Heading")?;
     writeln!(
         out,
-        "grainpack voxel RVE: {nx} x {ny} x {nz} C3D8 elements, box {} x {} x {}, {}",
+        "grainpack voxel RVE: {nx} x {ny} x {nz} C3D8 elements, box {} x {} x {} {}, {}",
         size[0],
         size[1],
         size[2],
+        scene.units.length.symbol(),
         if grid.periodic {
             "periodic"
         } else {
             "not periodic"
         }
+    )?;
+    let (length, stress) = (scene.units.length.symbol(), scene.units.stress.symbol());
+    writeln!(
+        out,
+        "** units (the scene's [units]): lengths in {length}, stresses and E in {stress}, \
+         forces in {stress}*{length}^2"
     )?;
     writeln!(
         out,
@@ -229,7 +239,11 @@ fn solids(scene: &Scene, grid: &VoxelGrid) -> Vec<(String, usize, Elastic)> {
     for &p in &grid.phase {
         present[p as usize] = true;
     }
-    let fallback = super::damask::PLACEHOLDER_ELASTIC;
+    // The placeholder is in Pa; the deck is in the scene's stress unit.
+    let fallback = Elastic {
+        young: scene.units.stress.from_si(PLACEHOLDER_ELASTIC.young),
+        ..PLACEHOLDER_ELASTIC
+    };
     let mut out: Vec<_> = scene
         .phases
         .iter()

@@ -3,7 +3,7 @@
 use super::names::matrix_name;
 use crate::io::voxel::VoxelGrid;
 use crate::packing::PackedGrain;
-use crate::scene::{Elastic, Homogenization, RveFill, Scene};
+use crate::scene::{Elastic, Homogenization, RveFill, Scene, Units};
 use std::io::{self, Write};
 
 /// File name of DAMASK's material configuration.
@@ -12,8 +12,10 @@ pub const MATERIAL_YAML: &str = "material.yaml";
 pub const LOAD_YAML: &str = "load.yaml";
 
 /// The elastic constants of a phase with neither `[phase.damask]` nor
-/// `[phase.elastic]`: an isotropic placeholder (E = 200 GPa, ν = 0.3, in Pa as DAMASK
-/// expects), marked as one in the file, so that the set loads and runs; replace it.
+/// `[phase.elastic]`: an isotropic placeholder (E = 200 GPa, ν = 0.3, here in Pa; every
+/// writer converts it as it converts the scene's moduli: `material.yaml` in Pa, the
+/// deck in the scene's `units.stress`), marked as one in the file, so that the set
+/// loads and runs; replace it.
 pub const PLACEHOLDER_ELASTIC: Elastic = Elastic {
     young: 200e9,
     poisson: 0.3,
@@ -22,7 +24,8 @@ pub const PLACEHOLDER_ELASTIC: Elastic = Elastic {
 /// Writes `material.yaml`: the scene's `homogenization` (default
 /// [`Homogenization::single_crystal`]: `SX`, one constituent, `pass`), a
 /// `phase` entry per scene phase (its `[phase.damask]` table as written, else an
-/// isotropic Hooke phase from `[phase.elastic]`, else [`PLACEHOLDER_ELASTIC`]), the
+/// isotropic Hooke phase from `[phase.elastic]` converted to Pa from the scene's
+/// `units.stress`, else [`PLACEHOLDER_ELASTIC`]), the
 /// matrix's when the grid has one, and the `material` list: entry `k` is grain `k` with
 /// `O = crystals[k]` and the phase of `grains[k]` (printed so that it reads back to the same double), the matrix
 /// last with the identity.
@@ -35,6 +38,13 @@ pub fn write_material_yaml(
 ) -> io::Result<()> {
     let matrix = grid.fill == RveFill::Matrix;
     writeln!(out, "# DAMASK material configuration written by grainpack.")?;
+    // The same text whatever the scene's units, so that one scene in MPa and µm and
+    // the same in Pa and m give the same file.
+    writeln!(
+        out,
+        "# Units: SI (Pa, m), as DAMASK reads them: [phase.elastic] converted from the \
+         scene's units.stress, [phase.damask] as written."
+    )?;
     writeln!(
         out,
         "# material k is grain k of grains.csv (and of rve.vti's `material`){}.",
@@ -52,7 +62,7 @@ pub fn write_material_yaml(
     writeln!(out, "phase:")?;
     let mut names: Vec<&str> = scene.phases.iter().map(|p| p.name.as_str()).collect();
     for p in &scene.phases {
-        write_phase(out, &p.name, p.damask.as_ref(), p.elastic)?;
+        write_phase(out, &p.name, p.damask.as_ref(), p.elastic, scene.units)?;
     }
     if matrix {
         let name = matrix_name(scene);
@@ -61,6 +71,7 @@ pub fn write_material_yaml(
             name,
             scene.matrix.damask.as_ref(),
             scene.matrix.elastic,
+            scene.units,
         )?;
         names.push(name);
     }
@@ -98,6 +109,7 @@ fn write_phase(
     name: &str,
     damask: Option<&toml::Table>,
     elastic: Option<Elastic>,
+    units: Units,
 ) -> io::Result<()> {
     if let Some(table) = damask {
         // The table goes through as written, in flow style ([`flow`]).
@@ -105,7 +117,13 @@ fn write_phase(
         return writeln!(out, "  {}: {text}", json(name));
     }
     let (e, note) = match elastic {
-        Some(e) => (e, "isotropic Hooke, from the scene's [phase.elastic]"),
+        Some(e) => (
+            Elastic {
+                young: units.stress.to_si(e.young),
+                ..e
+            },
+            "isotropic Hooke, from the scene's [phase.elastic], in Pa",
+        ),
         None => (
             PLACEHOLDER_ELASTIC,
             "PLACEHOLDER: isotropic elastic E = 200 GPa, nu = 0.3; give [phase.damask] \

@@ -11,7 +11,7 @@ use crate::io::voxel::{
 };
 use crate::packing::PackedGrain;
 use crate::run::PhaseStatistics;
-use crate::scene::{tilt_angle_of, Domain, Orientation, OutputSpec, Phase, RveFill};
+use crate::scene::{tilt_angle_of, Domain, Orientation, OutputSpec, Phase, RveFill, Units};
 use serde::Serialize;
 use std::io;
 use std::time::Instant;
@@ -43,6 +43,8 @@ pub struct Packed<'a> {
     pub phases: &'a [Phase],
     /// The box.
     pub domain: &'a Domain,
+    /// The scene's units (`rve.vti` is written in metres).
+    pub units: Units,
     /// The packed grains, in id order.
     pub grains: &'a [PackedGrain],
     /// The run's statistics, one per phase (the figure's KS distances), when known.
@@ -112,6 +114,7 @@ pub fn write_derived(
     let Packed {
         phases,
         domain,
+        units,
         grains,
         statistics,
     } = packed;
@@ -123,7 +126,7 @@ pub fn write_derived(
             .map_err(|e| files.error(RVE_VTI, io::Error::other(e)))?;
         let seconds = start.elapsed().as_secs_f64();
         files.write(RVE_VTI, |w| {
-            write_vti(&grid, crystals.map(|c| c.orientations), w)
+            write_vti(&grid, units.length, crystals.map(|c| c.orientations), w)
         })?;
         beside_rve(&grid, files)?;
         let report = grain_report(&grid, grains)

@@ -28,7 +28,7 @@ pub use derived::{
 };
 
 pub use crate::io::texture::crystal_orientations;
-pub use summary::{CounterSummary, Summary, TimingSummary};
+pub use summary::{CounterSummary, Summary, TimingSummary, UnitsSummary};
 pub use texture::{texture_summaries, TextureSummary};
 
 use crate::io::atomic::write_atomically;
@@ -190,6 +190,7 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     let packed = Packed {
         phases: &scene.phases,
         domain,
+        units: scene.units,
         grains,
         statistics: Some(&result.statistics.phases),
     };

@@ -16,7 +16,11 @@ pub struct Summary<'a> {
     pub version: &'static str,
     /// The seed used (the scene's, or `--seed`).
     pub seed: u64,
-    /// Box size `[Lx, Ly, Lz]`.
+    /// The scene's units (`[units]`): every length here, in `grains.csv`, the VTK
+    /// files and the deck is in `length`, every modulus in `stress`; DAMASK's
+    /// `material.yaml` and `rve.vti` are in SI.
+    pub units: UnitsSummary,
+    /// Box size `[Lx, Ly, Lz]`, in `units.length`.
     #[serde(rename = "box")]
     pub box_size: [f64; 3],
     /// `"periodic"` or `"reflecting"`.
@@ -70,6 +74,17 @@ pub struct Summary<'a> {
     pub rve: Option<&'a RveSummary>,
     /// Each phase's crystal orientations against its texture.
     pub textures: Vec<TextureSummary>,
+    /// The scene's warnings ([`Scene::warnings`]): values its units make implausible.
+    pub warnings: &'a [String],
+}
+
+/// The scene's units, by name (`"um"`, `"MPa"`, …).
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct UnitsSummary {
+    /// Unit of every length: `"m"`, `"mm"`, `"um"` or `"nm"`.
+    pub length: &'static str,
+    /// Unit of every stress and modulus: `"Pa"`, `"kPa"`, `"MPa"` or `"GPa"`.
+    pub stress: &'static str,
 }
 
 /// Seconds spent: the loop's stages, the loop as a whole, and the run.
@@ -110,7 +125,7 @@ impl<'a> Summary<'a> {
     /// seconds to write and rendered the RVE as `rve` (when one was written), with its
     /// phases' `textures` ([`texture_summaries`](super::texture_summaries)).
     pub fn new(
-        scene: &Scene,
+        scene: &'a Scene,
         result: &'a RunResult,
         rve: Option<&'a RveSummary>,
         textures: Vec<TextureSummary>,
@@ -123,6 +138,10 @@ impl<'a> Summary<'a> {
         Self {
             version: env!("CARGO_PKG_VERSION"),
             seed: result.seed,
+            units: UnitsSummary {
+                length: scene.units.length.symbol(),
+                stress: scene.units.stress.symbol(),
+            },
             box_size: scene.domain.size,
             boundary: match scene.domain.boundary {
                 Boundary::Periodic => "periodic",
@@ -162,6 +181,7 @@ impl<'a> Summary<'a> {
             phases: &statistics.phases,
             rve,
             textures,
+            warnings: &scene.warnings,
         }
     }
 }

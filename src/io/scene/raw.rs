@@ -23,6 +23,15 @@ pub(crate) struct RawScene {
     pub matrix: Opt<RawMatrix>,
     /// `[homogenization]`: checked by validation, passed through to `material.yaml`.
     pub homogenization: Opt<toml::Table>,
+    pub units: Opt<RawUnits>,
+}
+
+/// `[units]`: the names, checked by validation.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawUnits {
+    pub length: Opt<String>,
+    pub stress: Opt<String>,
 }
 
 /// `[matrix]`: the matrix material of `rve_fill = "matrix"`.

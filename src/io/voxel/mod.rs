@@ -83,7 +83,7 @@ pub use moments::VoxelShape;
 pub use raster::{voxelise, GROWTH, MARGIN_VOXELS, ROW_ROUNDING};
 pub use report::{grain_report, GrainVoxels, VoxelReport};
 pub use sections::write_sections_png;
-pub use vti::write_vti;
+pub use vti::{write_vti, EULER_ARRAYS};
 
 use crate::scene::RveFill;
 

@@ -1,5 +1,5 @@
 //! VTK XML ImageData (`.vti`) with the `material` and `phase` cell arrays (and, when
-//! crystal orientations are asked for, `euler_angles`).
+//! crystal orientations are asked for, `phi1`, `Phi`, `phi2`), in metres.
 //!
 //! A small writer of its own rather than `vtkio`: vtkio (0.6 and 0.7) stores an image's
 //! Origin and Spacing as `f32`, so `L/N` would be rounded (92/69 becomes 1.3333334 and
@@ -8,7 +8,7 @@
 //! in independent blocks (compressed in parallel) and base64-encoded, as VTK writes them.
 
 use super::VoxelGrid;
-use crate::scene::quaternion_to_euler;
+use crate::scene::{quaternion_to_euler, LengthUnit};
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
 use flate2::write::ZlibEncoder;
@@ -19,20 +19,27 @@ use std::io::{self, Write};
 /// Uncompressed bytes per compressed block (VTK's readers take any block size).
 const BLOCK_BYTES: usize = 1 << 20;
 
-/// Writes `grid` as VTK XML ImageData to `out` (the caller makes the file atomic).
+/// Names of the orientation arrays: Bunge Euler angles in degrees, as the columns of
+/// `grains.csv`.
+pub const EULER_ARRAYS: [&str; 3] = ["phi1", "Phi", "phi2"];
+
+/// Writes `grid` as VTK XML ImageData to `out` (the caller makes the file atomic), in
+/// metres: `length` is the unit of `grid.size` (the scene's `units.length`), converted
+/// as DAMASK expects SI.
 ///
 /// `WholeExtent = 0 Nx 0 Ny 0 Nz` counts points, so there are `Nx Ny Nz` cells; the
-/// origin is 0 and the spacing `L/N`, printed with 17 significant digits so that
-/// `N × spacing` gives `L` back. The cell arrays `material` and `phase` are `Int32`
-/// (DAMASK's `GeomGrid.load` takes the `material` array; `phase` becomes an initial
-/// condition there), in x-fastest order as VTK expects. With `orientations`
+/// origin is 0 and the spacing `L/N` (L in metres), printed with 17 significant digits
+/// so that `N × spacing` gives `L` back. The cell arrays `material` and `phase` are
+/// `Int32` (DAMASK's `GeomGrid.load` takes the `material` array; `phase` becomes an
+/// initial condition there), in x-fastest order as VTK expects. With `orientations`
 /// (`orientations[k]` the crystal orientation of grain `k`, a unit quaternion scalar
-/// first), a third array `euler_angles` (`Float64`, 3 components: Bunge φ1, Φ, φ2 in
-/// degrees, as in `grains.csv`, [`quaternion_to_euler`]) gives each cell its material's
+/// first), three more `Float64` scalar arrays [`EULER_ARRAYS`] (Bunge φ1, Φ, φ2 in
+/// degrees, as in `grains.csv`, [`quaternion_to_euler`]) give each cell its material's
 /// orientation, the identity (0, 0, 0) for the matrix (as its `material.yaml` entry).
-/// Three components, not the quaternion's four: DAMASK's `GeomGrid.load` takes every
-/// other cell array as an initial condition and rejects any that is not a scalar or a
-/// 3-vector.
+/// Scalars, not one 3-component array: DAMASK's `GeomGrid.load` takes every cell array
+/// other than `material` as an initial condition, and version 3.0.x reshapes each to
+/// the grid's cells (a 3-component array fails there: "cannot reshape array of size
+/// 3N"); 3.1.x takes scalars too.
 ///
 /// Each array's data is alone on the line after its `<DataArray …>` tag, as DAMASK's
 /// Fortran reader takes it (`VTI_readDataset_raw` in DAMASK's `src/grid/VTI.f90` reads
@@ -40,23 +47,26 @@ const BLOCK_BYTES: usize = 1 << 20;
 /// others); XML readers do not mind the line breaks.
 ///
 /// ```
-/// use grainpack::scene::{Boundary, Domain};
+/// use grainpack::scene::{Boundary, Domain, LengthUnit};
 /// use grainpack::io::voxel::{voxelise, write_vti};
 /// use grainpack::scene::RveFill;
 /// let domain = Domain { size: [1.0; 3], boundary: Boundary::Periodic };
 /// let grid = voxelise(&[], &domain, [2, 3, 4], RveFill::Matrix, 1).unwrap();
 /// let mut out = Vec::new();
-/// write_vti(&grid, None, &mut out).unwrap();
+/// write_vti(&grid, LengthUnit::Micrometre, None, &mut out).unwrap();
 /// let text = String::from_utf8(out).unwrap();
 /// assert!(text.contains(r#"WholeExtent="0 2 0 3 0 4""#));
+/// let spacing = text.split("Spacing=\"").nth(1).unwrap().split(' ').next().unwrap();
+/// assert_eq!(spacing.parse::<f64>().unwrap(), 0.5e-6); // 1 µm over 2 cells, in metres
 /// ```
 pub fn write_vti(
     grid: &VoxelGrid,
+    length: LengthUnit,
     orientations: Option<&[[f64; 4]]>,
     out: &mut dyn Write,
 ) -> io::Result<()> {
     let [nx, ny, nz] = grid.cells;
-    let h = grid.spacing();
+    let h = [0, 1, 2].map(|a| length.to_si(grid.size[a]) / grid.cells[a] as f64);
     let extent = format!("0 {nx} 0 {ny} 0 {nz}");
     writeln!(out, r#"<?xml version="1.0"?>"#)?;
     writeln!(
@@ -89,18 +99,20 @@ pub fn write_vti(
             .iter()
             .map(|&q| quaternion_to_euler(q).map(f64::to_degrees))
             .collect();
-        writeln!(
-            out,
-            r#"        <DataArray type="Float64" Name="euler_angles" NumberOfComponents="3" format="binary">"#
-        )?;
         let of = |m: &u32| euler.get(*m as usize).copied().unwrap_or([0.0; 3]);
-        write_compressed(
-            &grid.material,
-            24,
-            |m, bytes| bytes.extend(of(m).iter().flat_map(|x| x.to_le_bytes())),
-            out,
-        )?;
-        writeln!(out, "\n        </DataArray>")?;
+        for (a, name) in EULER_ARRAYS.iter().enumerate() {
+            writeln!(
+                out,
+                r#"        <DataArray type="Float64" Name="{name}" format="binary">"#
+            )?;
+            write_compressed(
+                &grid.material,
+                8,
+                |m, bytes| bytes.extend(of(m)[a].to_le_bytes()),
+                out,
+            )?;
+            writeln!(out, "\n        </DataArray>")?;
+        }
     }
     writeln!(out, "      </CellData>")?;
     writeln!(out, "    </Piece>")?;

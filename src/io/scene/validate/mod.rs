@@ -12,6 +12,7 @@ mod solver;
 mod table;
 mod texture;
 mod triaxial;
+mod units;
 
 use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
@@ -71,6 +72,8 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         (count(&src, &raw, &domain, &phases)?, domain)
     };
 
+    let units = units::units(&src, &raw)?;
+    let warnings = units::warnings(&src, &raw, units, &domain);
     let output = output::output(&src, raw.output.as_ref(), &domain)?;
     let matrix = solver::matrix(&src, &raw, &output)?;
     if output.abaqus {
@@ -87,6 +90,8 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         homogenization: solver::homogenization(&src, &raw, &output)?,
         output,
         matrix,
+        units,
+        warnings,
     };
     gap::fits(&src, raw.packing.as_ref(), &scene)?;
     Ok(scene)
