@@ -83,7 +83,9 @@ pub struct ProtocolParams {
     /// the same density to 0.001 (BENCHMARKS.md, "Dense packing"), and 20 000, the
     /// budget of the target's own relaxation, took ten times as long for 0.0003 more
     /// (125 s against 13 s, measured during development with a first form of the
-    /// plateau test).
+    /// plateau test). It is also the patience of the relaxations before the search
+    /// (the target's own and its compressions, module `jamming`): one still shallow
+    /// after that many steps counts as jammed.
     pub trial_steps: u64,
     /// The state shrunk by its smallest μ is shrunk by this much more, so that it keeps
     /// the `contact_gap` after rounding. Default `4 · contact_gap`.
