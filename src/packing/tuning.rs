@@ -74,8 +74,10 @@ pub struct ProtocolParams {
     /// sizes are then apart. 10⁻³ (the default) costs at most 0.3 % of packing fraction
     /// at jamming.
     pub margin: f64,
-    /// FIRE steps the relaxation at the target scale may take before it counts as
-    /// stuck. Default 20 000.
+    /// FIRE steps the relaxation at the target scale (and each compression of a
+    /// shallow first jam, module docs of `packing`) may take before it counts as
+    /// stuck; a shallow one stops at its patience ([`trial_steps`](Self::trial_steps))
+    /// first. Default 20 000.
     pub stage_steps: u64,
     /// FIRE steps a relaxation below the target scale (a trial of the bisection) may
     /// take at `packing.effort = 1`, before it counts as jammed at that scale.
