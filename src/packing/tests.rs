@@ -245,7 +245,11 @@ fn a_plateau_near_clean_is_not_called_jammed_when_it_would_reach_the_target() {
 
         assert!(p.verification.is_clean(), "{:?}", p.verification);
         assert_eq!(p.stop, StopReason::TargetReached, "{seed}: {}", p.fraction);
-        assert!(p.counters.fire_steps <= steps, "seed {seed}: {:?}", p.counters);
+        assert!(
+            p.counters.fire_steps <= steps,
+            "seed {seed}: {:?}",
+            p.counters
+        );
     }
 }
 
