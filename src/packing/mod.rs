@@ -29,7 +29,7 @@
 //!    after [`trial_steps`](ProtocolParams::trial_steps) by the jamming test's
 //!    patience) sets no bound: the state is compressed by 2 % of scale and relaxed
 //!    again until a jam is deep, and the search starts from there, so that a start
-//!    just above jamming costs and reaches what one far above it does (`effort.rs`,
+//!    just above jamming costs and reaches about what one far above it does (`effort.rs`,
 //!    `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed state is then
 //!    compressed again well past its jamming point and the search repeated,
 //!    `⌊2 (effort − 1)⌋` times (recompression cycles, see `start_cycle`), keeping
