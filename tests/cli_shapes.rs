@@ -206,7 +206,7 @@ fn bad_shapes_and_tables_exit_2_name_the_key_and_write_nothing() {
 /// Dense triaxial grains of a `fisher` phase, packed with `rotation = ROTATION`.
 const SPINNING: &str = r#"
 seed = 12
-target_fraction = 0.6
+target_fraction = 0.62
 [box]
 size = [40.0, 40.0, 40.0]
 [packing]
@@ -245,8 +245,9 @@ fn fisher_grains_turning_about_their_axis_keep_their_first_axis() {
             .unwrap(),
         );
     }
-    // The same drawn grains (same seed). Frozen, they jam below 0.6 (0.590 measured);
-    // turning about their first axes, they reach it (median turn 3.3°, measured)...
+    // The same drawn grains (same seed). Frozen, they jam below 0.62 (0.603 measured;
+    // at 0.6 they now reach it too, since a shallow first jam is compressed before
+    // the search); turning about their first axes, they reach it...
     assert_eq!(first_axes[0].len(), first_axes[1].len());
     assert_eq!(summaries[0]["stop_reason"], "jammed");
     assert_eq!(summaries[1]["stop_reason"], "target_reached");

@@ -8,7 +8,8 @@
 #     benches/density/packing_generation.sh PACK_BINARY [SEEDS] [SCENES...]
 #
 # For each scene (default: mono_periodic.toml and lognormal_periodic.toml of this
-# folder) and seed, interleaved: `pack` at each effort of EFFORTS (default "1 3"),
+# folder; the family of starts from 0.60 to 0.72 of issue 27 is start/*.toml) and
+# seed, interleaved: `pack` at each effort of EFFORTS (default "1 3"),
 # then PackingGeneration on the very spheres `pack` drew (their diameters), once per
 # protocol of PG_MODES (default "-fba:1e-3 -fba:1e-4"; a protocol is a comma list of
 # stages `option:contraction rate`, run one after the other on the same packing, as
@@ -54,10 +55,14 @@ print(f"| {sys.argv[2]} | {sys.argv[3]} | {s['grains']} | grainpack | effort {sy
       f"({s['stop_reason']}) | {s['packing_fraction']:.4f} | {wall:.1f} |")
 PY
     done
-    # The drawn diameters (any common scale: PackingGeneration rescales them).
-    python3 - "$work/out/grains.csv" "$work/diameters.txt" <<'PY'
+    # The drawn diameters (any common scale: PackingGeneration rescales them). It packs
+    # spheres only: a scene of other grains (benches/density/start/spheroids_*) gets
+    # grainpack's rows alone.
+    python3 - "$work/out/grains.csv" "$work/diameters.txt" <<'PY' || continue
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
+if any(len({r["a1"], r["a2"], r["a3"]}) > 1 for r in rows):
+    sys.exit(1)
 open(sys.argv[2], "w").write("".join(f"{2 * float(r['a1']):.17g}\n" for r in rows))
 PY
     for mode in $modes; do

@@ -1,6 +1,6 @@
 //! How much a packing may spend for density (`packing.effort`): the step budget of a
 //! trial below the target, and the recompression cycles that follow the first jamming
-//! point.
+//! point; and how deep the first jam must be before the search starts from it.
 
 #[cfg(doc)]
 use super::FireParams;
@@ -96,3 +96,21 @@ const CYCLES_PER_EFFORT: f64 = 2.0;
 
 /// The least `effort` with a recompression cycle (and so with unjamming moves).
 pub const MIN_CYCLE_EFFORT: f64 = 1.0 + 1.0 / CYCLES_PER_EFFORT;
+
+/// How far a shallow first jam is compressed, relatively to its scale, before the
+/// search: when the relaxation at the target (or at a scale it was compressed to) ends
+/// jammed but shallow (energy per grain below [`DEEP`](super::jamming::DEEP) times the
+/// margin's: just above its jamming point), the state is compressed by this much and
+/// relaxed again, until a relaxation ends deep (or [`QUENCH_LIMIT`]); the shallow jams
+/// set no bound on the search. Just above its jamming point, a relaxation from random
+/// positions creeps for thousands of steps and leaves a state whose search jams low:
+/// 10 000 equal spheres at 0.66 took 4 000 steps to a plateau and their search found
+/// 0.6390, where from 0.70 (1.02 times the scale) the plateau came at 1 300 steps and
+/// the search found 0.6418 (BENCHMARKS.md, "issue 27"). So a start just above jamming
+/// is searched as one at 0.70 would be.
+pub(super) const QUENCH_STEP: f64 = 0.02;
+
+/// The largest scale a shallow first jam is compressed to ([`QUENCH_STEP`]): the
+/// recompression of a cycle, [`RECOMPRESSION`] past the target, beyond which any
+/// jam counts as deep enough.
+pub(super) const QUENCH_LIMIT: f64 = 1.0 + RECOMPRESSION;

@@ -67,6 +67,13 @@ pub(crate) struct Fire {
     pub restore: f64,
     /// Each grain's turn from its drawn orientation, while restoring.
     turns: Vec<[f64; 3]>,
+    /// Steps after which a shallow relaxation counts as jammed (`u64::MAX`: never; the
+    /// jamming test's patience, module `jamming`).
+    pub patience: u64,
+    /// Whether the last relaxation's last energy per grain was deep
+    /// ([`DEEP`](super::jamming::DEEP) times the margin's): far above its jamming
+    /// point. Meaningful after a relaxation that did not end clean.
+    pub deep: bool,
     /// The square root of each grain's mass (see [`masses`]).
     root_mass: Vec<f64>,
     /// Each grain's force over its root mass.
@@ -87,6 +94,8 @@ impl Fire {
             positive: 0,
             restore: 0.0,
             turns: Vec::new(),
+            deep: false,
+            patience: u64::MAX,
             root_mass: Vec::new(),
             scaled: Vec::new(),
         }
@@ -127,8 +136,15 @@ impl Fire {
             .sum::<f64>()
             / n as f64;
         let margin_energy = 4.0 * (big_s - s).powi(2) * mean_rho2;
-        let mut jam = JamTest::new(p.window, p.plateau_slope, margin_energy, run.resolution);
+        let mut jam = JamTest::new(
+            p.window,
+            p.plateau_slope,
+            margin_energy,
+            run.resolution,
+            self.patience,
+        );
         masses(state, &mut self.root_mass);
+        self.deep = false;
         for _ in 0..budget {
             if run.stop.load(Ordering::Relaxed) {
                 return Ok(Outcome::Interrupted);
@@ -173,6 +189,7 @@ impl Fire {
                 overlaps: forces.overlaps,
             });
             let overlap = (1.0 - forces.min_mu1 / s).max(0.0);
+            self.deep = jam.is_deep(energy / n as f64);
             if jam.step(energy / n as f64, overlap) == Verdict::Jammed && self.restore == 0.0 {
                 counters.response += t2.elapsed();
                 return Ok(Outcome::Stuck);

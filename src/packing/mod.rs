@@ -24,7 +24,13 @@
 //!    relaxations slow down without end (critical slowing down), so each trial below
 //!    the target has a budget of [`trial_steps`](ProtocolParams::trial_steps) steps
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
-//!    counts as jammed at that scale. With `effort` ≥ 1.5, the jammed state is then
+//!    counts as jammed at that scale. A first jam that is *shallow* (the target just
+//!    above the jamming point: the relaxation from random positions creeps, and is cut
+//!    after [`trial_steps`](ProtocolParams::trial_steps) by the jamming test's
+//!    patience) sets no bound: the state is compressed by 2 % of scale and relaxed
+//!    again until a jam is deep, and the search starts from there, so that a start
+//!    just above jamming costs and reaches about what one far above it does (`effort.rs`,
+//!    `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed state is then
 //!    compressed again well past its jamming point and the search repeated,
 //!    `⌊2 (effort − 1)⌋` times (recompression cycles, see `start_cycle`), keeping
 //!    the densest clean state: more effort buys density for time;
@@ -65,7 +71,10 @@ pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningErro
 pub use verify::{verify, MIN_GAP_REACH};
 
 use crate::scene::{Boundary, Rotation};
-use effort::{recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW};
+use effort::{
+    recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW, QUENCH_LIMIT,
+    QUENCH_STEP,
+};
 use fire::{Context, Fire, Outcome};
 use neighbours::Neighbours;
 use rand::{Rng, SeedableRng};
@@ -136,18 +145,27 @@ pub fn pack(
     let mut cycles_left = recompression_cycles(params.effort);
     let depth = recompression(specs);
     let mut unjammer = unjam::Unjammer::new(params.unjam, cycles_left, seed);
+    // Until the first jam deep enough to search from (`effort::QUENCH_STEP`).
+    let mut quenching = true;
     let reason = loop {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if left == 0 {
             break StopReason::StepLimit;
         }
         run.counters.steps += 1;
-        // The target's own relaxation; later trials (a recompression may go past the
-        // target: a state jammed there is as good a start as any) have the trials'.
-        let budget = if run.counters.steps == 1 {
+        // The target's own relaxation and its compressions; later trials (a
+        // recompression may go past the target: a state jammed there is as good a
+        // start as any) have the trials'.
+        let budget = if quenching {
             protocol.stage_steps
         } else {
             trial_steps(&protocol, params.effort)
+        };
+        // Shallow relaxations from random positions creep (module `jamming`).
+        fire.patience = if quenching {
+            protocol.trial_steps
+        } else {
+            u64::MAX
         };
         let outcome = fire.relax(
             &mut state,
@@ -160,13 +178,19 @@ pub fn pack(
             Outcome::Interrupted => break StopReason::Interrupted,
             Outcome::Clean => best = Some(Snapshot::of(&state, s.min(1.0))),
             Outcome::Stuck | Outcome::Budget => {
-                stuck = stuck.min(s);
                 let shrunk = clean_scale(&mut state, &mut run, &protocol, s)?.min(1.0);
                 if best.as_ref().is_none_or(|b| b.scale < shrunk) {
                     best = Some(Snapshot::of(&state, shrunk));
                 }
+                // A shallow first jam is a poor start for the search: compress further.
+                if quenching && !fire.deep && s < QUENCH_LIMIT {
+                    s *= 1.0 + QUENCH_STEP;
+                    continue;
+                }
+                stuck = stuck.min(s);
             }
         }
+        quenching = false;
         let low = best.as_ref().map_or(0.0, |b| b.scale);
         if low >= 1.0 {
             break StopReason::TargetReached;

@@ -230,8 +230,10 @@ size = { distribution = "constant", value = 2.0 }
 /// The same scene with the seeds (of 1–8) whose relaxation at the target is slowest:
 /// a plateau under the floor counts as jammed only with a lasting overlap of a share
 /// of the resolution (`jamming::NEAR_CLEAN`), which a relaxation on its way to clean
-/// does not keep, so both still reach the target, in the very steps they took
-/// without that rule (measured with `NEAR_CLEAN` set out of reach).
+/// does not keep, so both still reach the target. Their relaxation at the target is
+/// shallow and now cut at its patience (`jamming::DEEP`); compressed and searched
+/// from there they reach the target all the same, in no more FIRE steps than the
+/// 5 616 and 3 892 the relaxation at the target took alone (seed 4: 2 900).
 #[test]
 fn a_plateau_near_clean_is_not_called_jammed_when_it_would_reach_the_target() {
     for (seed, steps) in [(4, 5616), (7, 3892)] {
@@ -243,7 +245,11 @@ fn a_plateau_near_clean_is_not_called_jammed_when_it_would_reach_the_target() {
 
         assert!(p.verification.is_clean(), "{:?}", p.verification);
         assert_eq!(p.stop, StopReason::TargetReached, "{seed}: {}", p.fraction);
-        assert_eq!(p.counters.fire_steps, steps, "seed {seed}");
+        assert!(
+            p.counters.fire_steps <= steps,
+            "seed {seed}: {:?}",
+            p.counters
+        );
     }
 }
 

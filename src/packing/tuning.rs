@@ -74,8 +74,10 @@ pub struct ProtocolParams {
     /// sizes are then apart. 10⁻³ (the default) costs at most 0.3 % of packing fraction
     /// at jamming.
     pub margin: f64,
-    /// FIRE steps the relaxation at the target scale may take before it counts as
-    /// stuck. Default 20 000.
+    /// FIRE steps the relaxation at the target scale (and each compression of a
+    /// shallow first jam, module docs of `packing`) may take before it counts as
+    /// stuck; a shallow one stops at its patience ([`trial_steps`](Self::trial_steps))
+    /// first. Default 20 000.
     pub stage_steps: u64,
     /// FIRE steps a relaxation below the target scale (a trial of the bisection) may
     /// take at `packing.effort = 1`, before it counts as jammed at that scale.
@@ -83,7 +85,9 @@ pub struct ProtocolParams {
     /// the same density to 0.001 (BENCHMARKS.md, "Dense packing"), and 20 000, the
     /// budget of the target's own relaxation, took ten times as long for 0.0003 more
     /// (125 s against 13 s, measured during development with a first form of the
-    /// plateau test).
+    /// plateau test). It is also the patience of the relaxations before the search
+    /// (the target's own and its compressions, module `jamming`): one still shallow
+    /// after that many steps counts as jammed.
     pub trial_steps: u64,
     /// The state shrunk by its smallest μ is shrunk by this much more, so that it keeps
     /// the `contact_gap` after rounding. Default `4 · contact_gap`.
