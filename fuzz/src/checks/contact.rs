@@ -77,14 +77,14 @@ pub fn check_pair(r: &Vec3, q1: &Sym3, q2: &Sym3, k: i32) {
             "{input}: swapped {a:?} {b:?}"
         );
     }
-    // Powers of two keep r exact: μ² scales by t² to its rounding, while t²μ² stays a
-    // normal double.
+    // Powers of two keep r exact: μ² scales by t² to its rounding, while μ² and t²μ²
+    // are normal doubles (a subnormal μ² has fewer than 53 bits).
     let t = 2f64.powi(k);
     let expected = a.mu2 * t * t;
     let exact = r
         .iter()
         .all(|x| *x == 0.0 || (x * t).abs() >= f64::MIN_POSITIVE);
-    if exact && expected.is_finite() && expected > f64::MIN_POSITIVE && settled(&a) {
+    if exact && a.mu2.is_normal() && expected.is_normal() && settled(&a) {
         let scaled = contact_function(&r.map(|x| x * t), q1, q2);
         let c = scaled.unwrap_or_else(|e| panic!("{input}: answered, but r12 × 2^{k}: {e}"));
         if settled(&c) {

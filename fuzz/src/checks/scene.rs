@@ -70,7 +70,8 @@ pub fn check_error(e: &SceneError, text: &str, name: &str) {
 /// check and hold only finite numbers, or be a typed error other than a failed check.
 pub fn pack_small(scene: &Scene) {
     let expected = scene.expected_count();
-    if !(expected <= MAX_PACKED_GRAINS) {
+    // NaN (a scene this crate cannot estimate) is not packed either.
+    if expected.is_nan() || expected > MAX_PACKED_GRAINS {
         return;
     }
     let stop = AtomicBool::new(false);
