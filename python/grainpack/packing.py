@@ -139,11 +139,16 @@ class Packing:
             Indexed ``[i, j, k]`` with voxel centres at ``((i + ½) Lx/nx, ...)`` (x
             fastest in memory, as DAMASK's ``GeomGrid.material``).
         """
+        if not isinstance(fill, str) or fill not in ("grains", "matrix"):
+            raise ValueError(f'fill = {fill!r}: must be "grains" or "matrix"')
         if field not in ("material", "phase"):
             raise ValueError(f'field = {field!r}: must be "material" or "phase"')
-        cells = [int(resolution)] if np.isscalar(resolution) else [int(n) for n in resolution]
-        if any(n < 1 for n in cells):
-            raise ValueError(f"resolution = {resolution!r}: cell counts must be at least 1")
+        try:
+            cells = [int(resolution)] if np.isscalar(resolution) else [int(n) for n in resolution]
+        except (TypeError, ValueError, OverflowError):
+            raise ValueError(f"resolution = {resolution!r}: must be an int or three ints") from None
+        if any(not 1 <= n < 2**32 for n in cells):
+            raise ValueError(f"resolution = {resolution!r}: cell counts must be in [1, 2**32)")
         material, phase, (nx, ny, nz) = self._native._voxelise(cells, fill)
         values = material if field == "material" else phase
         return values.reshape(nz, ny, nx).transpose()
@@ -242,9 +247,9 @@ def pack(
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a grainpack.Scene, got {type(scene).__name__}")
-    if seed is not None and (not isinstance(seed, (int, np.integer)) or seed < 0):
-        raise ValueError(f"seed = {seed!r}: must be a non-negative integer")
-    if threads is not None and (not isinstance(threads, (int, np.integer)) or threads < 1):
+    if seed is not None and (not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**64):
+        raise ValueError(f"seed = {seed!r}: must be a non-negative integer below 2**64")
+    if threads is not None and (not isinstance(threads, (int, np.integer)) or not 1 <= threads < 2**64):
         raise ValueError(f"threads = {threads!r}: must be a positive integer (or None)")
     display = None
     callback: Callable[[int, float, float, int], Any] | None

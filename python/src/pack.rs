@@ -108,5 +108,8 @@ fn wait(
 
 /// A failed run as a Python exception, with the CLI's message.
 fn run_error(error: &RunError) -> PyErr {
-    PyRuntimeError::new_err(chain(error))
+    match error {
+        RunError::TooManyThreads { .. } => PyValueError::new_err(chain(error)),
+        _ => PyRuntimeError::new_err(chain(error)),
+    }
 }

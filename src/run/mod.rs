@@ -88,6 +88,11 @@ pub struct RunTimings {
     pub total: Duration,
 }
 
+/// The most threads a run starts. rayon starts every thread of a pool at once: 10⁵
+/// threads took minutes and gigabytes before the pool failed (found by the Python
+/// package's hypothesis tests), and no machine this packs on has a thousand cores.
+pub const MAX_THREADS: usize = 1024;
+
 /// Why a run failed. No packing is returned with any of these.
 #[derive(Debug, Error)]
 #[non_exhaustive]
@@ -103,6 +108,12 @@ pub enum RunError {
         /// What rayon said.
         #[source]
         source: rayon::ThreadPoolBuildError,
+    },
+    /// More threads asked for than [`MAX_THREADS`].
+    #[error("threads = {threads}: at most {MAX_THREADS}")]
+    TooManyThreads {
+        /// Threads asked for.
+        threads: NonZeroUsize,
     },
     /// The loop could not start (an internal error on a validated scene).
     #[error("the packing failed")]
@@ -137,6 +148,9 @@ pub fn run(scene: &Scene, options: RunOptions) -> Result<RunResult, RunError> {
         tuning,
         drawn,
     } = options;
+    if let Some(n) = threads.filter(|n| n.get() > MAX_THREADS) {
+        return Err(RunError::TooManyThreads { threads: n });
+    }
     let seed = seed.unwrap_or(scene.seed);
     let mut specs = scene
         .sample_grains(&mut ChaCha8Rng::seed_from_u64(seed))

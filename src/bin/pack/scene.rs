@@ -178,9 +178,11 @@ fn prepare_dir(output: &OutputSpec) -> Result<Option<PathBuf>, Failure> {
 }
 
 /// A failed run, as the user reads it: errors of this scene are prefixed with its
-/// file name. Each is internal (exit code 1): a validated scene always packs.
+/// file name. Each is internal (exit code 1): a validated scene always packs; too many
+/// `--threads` is bad input (exit code 2).
 fn run_failure(error: RunError, name: &str) -> Failure {
     match error {
+        RunError::TooManyThreads { .. } => return Failure::bad_input(error),
         RunError::Sample(_) | RunError::Pack(_) => anyhow!(error).context(name.to_owned()),
         _ => anyhow!(error),
     }

@@ -124,8 +124,15 @@ pub(super) fn solve_with_complement(
     let m = maximise(&n, &c, odds)?;
     // Back from λ̂ to λ: λ = t̂ w2 / (ŝ w1 + t̂ w2).
     let (s, t) = (m.s * w1, m.t * w2);
+    // Both products underflow when one weight did (sizes beyond the double range
+    // apart) and λ̂* is at that end: the small form is a point to the large one, and
+    // λ* is at its end (for balls, λ* = R1/(R1+R2)).
     let (lambda, complement) = if s + t > 0.0 {
         (t / (s + t), s / (s + t))
+    } else if w1 == 0.0 {
+        (1.0, 0.0)
+    } else if w2 == 0.0 {
+        (0.0, 1.0)
     } else {
         (0.5, 0.5)
     };

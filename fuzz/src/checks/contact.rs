@@ -1,0 +1,97 @@
+//! The contact functions on arbitrary input: an answer is finite and obeys the
+//! symmetries to the bounds `tests/contact_properties.rs` documents, or it is a
+//! typed error.
+
+use grainpack::contact::{
+    contact_function, contact_function_fast, contact_geometry, overlaps, Contact, Stop, Sym3, Vec3,
+};
+
+/// Relative bound on identities exact in real arithmetic that the accurate method
+/// reproduces to a few ulps: 16 ε, as `IDENTITY_TOL` in `tests/contact_properties.rs`.
+pub const IDENTITY_TOL: f64 = 16.0 * f64::EPSILON;
+
+/// Bound on `|λ(1, 2) − (1 − λ(2, 1))|`, as in `tests/contact_properties.rs`
+/// (`swapping_the_ellipsoids_keeps_mu2_and_mirrors_lambda`). Checked where that test
+/// draws its pairs: inputs and μ² without subnormal numbers. λ has no documented bound
+/// elsewhere (the robust path: "λ off by half on a `huge_ratio` reference pair"), and
+/// subnormal inputs carry fewer than 53 bits.
+pub const LAMBDA_SWAP_TOL: f64 = 1e-12;
+
+/// Zero or a normal double (not subnormal, not NaN or infinite).
+fn plain(x: f64) -> bool {
+    x == 0.0 || x.is_normal()
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol * a.abs().max(b.abs())
+}
+
+/// An answer that may be compared: the accurate method met its stopping test (or
+/// needed none). [`Stop::MaxIterations`] is a best estimate, not held to the bounds.
+fn settled(c: &Contact) -> bool {
+    matches!(c.stop, Stop::Converged | Stop::Exact)
+}
+
+/// Checks every contact function on one pair in relative form, and the symmetries:
+/// the swapped pair (`−r12`, `q2`, `q1`) and `r12` scaled by `2^k`.
+pub fn check_pair(r: &Vec3, q1: &Sym3, q2: &Sym3, k: i32) {
+    let input = format!("r12 = {r:?}, q1 = {q1:?}, q2 = {q2:?}");
+    for method in [contact_function, contact_function_fast] {
+        if let Ok(c) = method(r, q1, q2) {
+            assert!(
+                c.mu2.is_finite() && c.mu2 >= 0.0 && (0.0..=1.0).contains(&c.lambda),
+                "{input}: {c:?}"
+            );
+        }
+    }
+    if let Ok(g) = contact_geometry(r, q1, q2) {
+        let values = [g.mu2, g.lambda, g.gap]
+            .into_iter()
+            .chain(g.point)
+            .chain(g.normal);
+        assert!(values.into_iter().all(f64::is_finite), "{input}: {g:?}");
+    }
+    let decided = overlaps(r, q1, q2);
+    let Ok(a) = contact_function(r, q1, q2) else {
+        return;
+    };
+    if let Ok(overlap) = decided {
+        // `overlaps` is the sign of μ² − 1: it must agree wherever the accurate μ²
+        // is further from 1 than its own error.
+        if settled(&a) && (a.mu2 - 1.0).abs() > IDENTITY_TOL * a.mu2.max(1.0) {
+            assert_eq!(overlap, a.mu2 < 1.0, "{input}: {a:?}");
+        }
+    }
+    let swapped = contact_function(&r.map(|x| -x), q2, q1);
+    let b = swapped.unwrap_or_else(|e| panic!("{input}: answered, but swapped: {e}"));
+    if settled(&a) && settled(&b) {
+        assert!(
+            close(a.mu2, b.mu2, IDENTITY_TOL),
+            "{input}: swapped {a:?} {b:?}"
+        );
+    }
+    let plain_input = r.iter().chain(q1).chain(q2).all(|&x| plain(x));
+    if settled(&a) && settled(&b) && plain_input && a.mu2.is_normal() {
+        assert!(
+            (a.lambda - (1.0 - b.lambda)).abs() <= LAMBDA_SWAP_TOL,
+            "{input}: swapped {a:?} {b:?}"
+        );
+    }
+    // Powers of two keep r exact: μ² scales by t² to its rounding, while μ² and t²μ²
+    // are normal doubles (a subnormal μ² has fewer than 53 bits).
+    let t = 2f64.powi(k);
+    let expected = a.mu2 * t * t;
+    let exact = r
+        .iter()
+        .all(|x| *x == 0.0 || (x * t).abs() >= f64::MIN_POSITIVE);
+    if exact && a.mu2.is_normal() && expected.is_normal() && settled(&a) {
+        let scaled = contact_function(&r.map(|x| x * t), q1, q2);
+        let c = scaled.unwrap_or_else(|e| panic!("{input}: answered, but r12 × 2^{k}: {e}"));
+        if settled(&c) {
+            assert!(
+                close(c.mu2, expected, IDENTITY_TOL),
+                "{input}: 2^{k}: {a:?} {c:?}"
+            );
+        }
+    }
+}

@@ -1,0 +1,362 @@
+//! A structure-aware scene generator: a tiny valid scene, then edits chosen by the
+//! input bytes, each setting a documented key (`docs/config.md`) to a value at or past
+//! its limits (zero, negative, NaN, huge, empty tables, wrong types), removing one,
+//! adding a phase or a misspelt key. libFuzzer and proptest drive the same bytes.
+
+/// The input bytes, read one choice at a time (zeros once they run out).
+pub struct Choices<'a> {
+    data: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Choices<'a> {
+    /// Choices read from `data`.
+    pub fn new(data: &'a [u8]) -> Self {
+        Self { data, at: 0 }
+    }
+
+    fn byte(&mut self) -> u8 {
+        let b = self.data.get(self.at).copied().unwrap_or(0);
+        self.at += 1;
+        b
+    }
+
+    fn exhausted(&self) -> bool {
+        self.at >= self.data.len()
+    }
+
+    fn pick<T: Copy>(&mut self, items: &[T]) -> T {
+        items[usize::from(self.byte()) % items.len()]
+    }
+}
+
+/// Grain-law tables: each takes every family's keys.
+const LAWS: [&str; 5] = ["size", "aspect_ratio", "b_over_a", "c_over_a", "c_over_b"];
+
+/// Every table of a scene with its documented keys (`src/io/scene/raw.rs`).
+const TABLES: [(&str, &[&str]); 10] = [
+    ("", &["seed", "grains", "target_fraction"]),
+    ("box", &["size", "boundary"]),
+    ("phase", &["name", "share"]),
+    (
+        "law",
+        &[
+            "distribution",
+            "value",
+            "mean",
+            "std",
+            "sigma",
+            "scale",
+            "loc",
+            "min",
+            "max",
+            "x",
+            "cdf",
+            "by",
+            "interpolation",
+        ],
+    ),
+    (
+        "phase.orientation",
+        &[
+            "kind",
+            "quaternion",
+            "axis",
+            "mean",
+            "kappa",
+            "min",
+            "max",
+            "direction",
+            "spin_reference",
+            "spin_kappa",
+            "spin_mean",
+        ],
+    ),
+    (
+        "phase.texture",
+        &[
+            "kind",
+            "quaternion",
+            "euler",
+            "crystal_direction",
+            "sample_direction",
+            "kappa",
+            "file",
+            "relative_to_shape",
+        ],
+    ),
+    ("phase.elastic", &["E", "nu"]),
+    ("phase.measured", &["file", "mode", "phase"]),
+    (
+        "packing",
+        &[
+            "max_steps",
+            "jam_resolution",
+            "rotation",
+            "max_turn",
+            "restore",
+            "effort",
+            "unjam",
+        ],
+    ),
+    (
+        "output",
+        &[
+            "dir",
+            "grains_csv",
+            "summary_json",
+            "vtk",
+            "vtk_resolution",
+            "periodic_images",
+            "centers",
+            "rve",
+            "rve_resolution",
+            "rve_voxel_size",
+            "rve_fill",
+            "sections_png",
+            "statistics_png",
+            "damask",
+            "abaqus",
+        ],
+    ),
+];
+
+/// Free-form tables passed through to DAMASK, and the matrix's elastic constants.
+const PASSED: [(&str, &[&str]); 4] = [
+    ("phase.damask", &["lattice", "mechanical", "type"]),
+    ("matrix.elastic", &["E", "nu"]),
+    ("matrix.damask", &["lattice", "type"]),
+    ("homogenization", &["name", "N_constituents", "mechanical"]),
+];
+
+/// Numbers at and past every documented limit.
+const NUMBERS: [&str; 40] = [
+    "0",
+    "0.0",
+    "-0.0",
+    "-1",
+    "-1.0",
+    "1",
+    "1.0",
+    "2",
+    "3.0",
+    "0.5",
+    "1.5",
+    "4",
+    "10",
+    "100",
+    "360",
+    "-90",
+    "180.0",
+    "0.7707",
+    "0.7708",
+    "0.1",
+    "1e-3",
+    "1e-9",
+    "1e-300",
+    "5e-324",
+    "-1e-300",
+    "1e4",
+    "1e5",
+    "1e6",
+    "1e7",
+    "10000001",
+    "1e308",
+    "-1e308",
+    "nan",
+    "-nan",
+    "inf",
+    "-inf",
+    "9223372036854775807",
+    "-9223372036854775808",
+    "0.9999999999999999",
+    "1.0000000000000002",
+];
+
+/// Values of every other TOML type, and the documented words.
+const OTHERS: [&str; 36] = [
+    "\"\"",
+    "\"x\"",
+    "\"y\"",
+    "\"z\"",
+    "\"axis\"",
+    "true",
+    "false",
+    "[]",
+    "{}",
+    "[1.0]",
+    "[1.0, 2.0]",
+    "[1.0, 2.0, 3.0]",
+    "[0.0, 0.0, 0.0]",
+    "[-1.0, 1.0, 1.0]",
+    "[nan, 1.0, 1.0]",
+    "[1.0, 0.0, 0.0, 0.0]",
+    "[0.5, 0.5, 0.5, 0.5]",
+    "[0.0, 0.0, 0.0, 0.0]",
+    "[1, 2, 3]",
+    "[1e308, 1e308, 1e308]",
+    "[4, 4, 4]",
+    "[0.1, 1.0, 2.0]",
+    "[0.0, 0.5, 1.0]",
+    "[1.0, 0.5, 0.0]",
+    "\"constant\"",
+    "\"uniform\"",
+    "\"normal\"",
+    "\"lognormal\"",
+    "\"table\"",
+    "\"random\"",
+    "\"fixed\"",
+    "\"aligned\"",
+    "\"tilt\"",
+    "\"fisher\"",
+    "\"fibre\"",
+    "1979-05-27T07:32:00Z",
+];
+
+/// Words some keys take, besides the pools above.
+const WORDS: [&str; 14] = [
+    "\"periodic\"",
+    "\"reflecting\"",
+    "\"volume\"",
+    "\"number\"",
+    "\"linear\"",
+    "\"log\"",
+    "\"swap\"",
+    "\"none\"",
+    "\"draw\"",
+    "\"exact\"",
+    "\"grains\"",
+    "\"matrix\"",
+    "\"file\"",
+    "\"missing.csv\"",
+];
+
+/// One `key = value` line in table `table` (`phase.size` etc. are those of phase
+/// `phase`).
+#[derive(Clone)]
+struct Entry {
+    table: String,
+    phase: usize,
+    key: String,
+    value: String,
+}
+
+/// A scene text from `choices`: the tiny valid scene below, then up to 24 edits.
+pub fn scene_from_choices(choices: &mut Choices) -> String {
+    let entry = |table: &str, phase, key: &str, value: &str| Entry {
+        table: table.into(),
+        phase,
+        key: key.into(),
+        value: value.into(),
+    };
+    let mut entries = vec![
+        entry("", 0, "seed", "1"),
+        entry("", 0, "grains", "4"),
+        entry("box", 0, "size", "[20.0, 20.0, 20.0]"),
+        entry("phase.size", 0, "distribution", "\"constant\""),
+        entry("phase.size", 0, "value", "3.0"),
+    ];
+    let mut phases = 1;
+    for _ in 0..24 {
+        if choices.exhausted() {
+            break;
+        }
+        match choices.byte() % 8 {
+            0..=3 => {
+                let (table, keys) = choices.pick(&TABLES);
+                let table = match table {
+                    "law" => format!("phase.{}", choices.pick(&LAWS)),
+                    t => t.to_owned(),
+                };
+                set(&mut entries, table, choices, keys, phases);
+            }
+            4 => {
+                let (table, keys) = choices.pick(&PASSED);
+                set(&mut entries, table.to_owned(), choices, keys, phases);
+            }
+            5 if !entries.is_empty() => {
+                let i = usize::from(choices.byte()) % entries.len();
+                entries.remove(i);
+            }
+            6 if phases < 3 => {
+                // A second phase: the first one's entries again, to be edited apart.
+                let first: Vec<Entry> = (entries.iter())
+                    .filter(|e| e.table.starts_with("phase") && e.phase == 0)
+                    .cloned()
+                    .collect();
+                entries.extend(first.into_iter().map(|e| Entry { phase: phases, ..e }));
+                phases += 1;
+            }
+            _ => {
+                // A misspelt or misplaced key, or a key given twice.
+                let e = entries.get(usize::from(choices.byte()) % entries.len().max(1));
+                let mut e = e.cloned().unwrap_or_else(|| entry("", 0, "seed", "1"));
+                match choices.byte() % 3 {
+                    0 => e.key.push('s'),
+                    1 => e.table = choices.pick(&TABLES).0.replace("law", "phase.size"),
+                    _ => {}
+                }
+                entries.push(e);
+            }
+        }
+    }
+    render(&entries, phases)
+}
+
+/// Sets `key` (one of `keys`) of `table` to a value from the pools.
+fn set(entries: &mut Vec<Entry>, table: String, c: &mut Choices, keys: &[&str], phases: usize) {
+    let key = c.pick(keys).to_owned();
+    let value = match c.byte() % 3 {
+        0 => c.pick(&NUMBERS),
+        1 => c.pick(&OTHERS),
+        _ => c.pick(&WORDS),
+    }
+    .to_owned();
+    let phase = usize::from(c.byte()) % phases;
+    entries.retain(|e| !(e.table == table && e.key == key && e.phase == phase));
+    entries.push(Entry {
+        table,
+        phase,
+        key,
+        value,
+    });
+}
+
+/// The TOML text: top-level keys, `[box]`, each `[[phase]]` with its sub-tables, then
+/// the other tables, each key under its table header.
+fn render(entries: &[Entry], phases: usize) -> String {
+    let mut text = String::new();
+    let mut section = |header: &str, table: &str, phase: usize| {
+        let lines: Vec<String> = (entries.iter())
+            .filter(|e| e.table == table && e.phase == phase)
+            .map(|e| format!("{} = {}\n", e.key, e.value))
+            .collect();
+        if !lines.is_empty() || header.starts_with("[[") {
+            text.push_str(header);
+            text.extend(lines);
+        }
+    };
+    section("", "", 0);
+    section("[box]\n", "box", 0);
+    for p in 0..phases {
+        section("[[phase]]\n", "phase", p);
+        for sub in LAWS
+            .iter()
+            .chain(&["orientation", "texture", "elastic", "damask"])
+        {
+            let table = format!("phase.{sub}");
+            section(&format!("[{table}]\n"), &table, p);
+        }
+        section("[phase.measured]\n", "phase.measured", p);
+    }
+    for table in [
+        "packing",
+        "output",
+        "matrix.elastic",
+        "matrix.damask",
+        "homogenization",
+    ] {
+        section(&format!("[{table}]\n"), table, 0);
+    }
+    text
+}

@@ -1,0 +1,86 @@
+//! The fuzz targets' bodies (`fuzz/src/checks`), run without instrumentation: over the
+//! committed corpus (`fuzz/corpus/TARGET/`: seeds, and every input a campaign found
+//! that crashed or that libFuzzer kept as covering new code), then over inputs that
+//! proptest generates. A regression in what the campaigns explored shows here at once;
+//! the long coverage-guided campaigns are run by hand (`fuzz/README.md`).
+
+#[path = "../fuzz/src/checks/mod.rs"]
+mod checks;
+
+use proptest::prelude::*;
+use std::path::Path;
+
+/// Runs `check` on every file of `fuzz/corpus/{target}`.
+fn replay(target: &str, check: fn(&[u8])) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/corpus")
+        .join(target);
+    let mut files: Vec<_> = (std::fs::read_dir(&dir).unwrap())
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    assert!(!files.is_empty(), "no corpus in {}", dir.display());
+    for file in files {
+        let data = std::fs::read(&file).unwrap();
+        // The file's name in the panic message, if a property fails.
+        let outcome = std::panic::catch_unwind(|| check(&data));
+        assert!(outcome.is_ok(), "fuzz/corpus/{target}/{}", file.display());
+    }
+}
+
+#[test]
+fn scene_files_of_the_corpus_are_refused_with_their_place_or_packed() {
+    replay("scene_bytes", checks::scene_bytes);
+}
+
+#[test]
+fn generated_scenes_of_the_corpus_are_refused_with_their_place_or_packed() {
+    replay("scene_keys", checks::scene_keys);
+}
+
+#[test]
+fn contact_case_files_of_the_corpus_name_their_bad_lines_and_write_finite_answers() {
+    replay("contact_csv", checks::contact_csv);
+}
+
+#[test]
+fn measured_tables_of_the_corpus_name_their_bad_lines_or_pack() {
+    replay("measured_table", checks::measured_table);
+}
+
+#[test]
+fn orientation_files_of_the_corpus_name_their_bad_lines_or_pack() {
+    replay("orientation_file", checks::orientation_file);
+}
+
+#[test]
+fn contact_bit_patterns_of_the_corpus_answer_finitely_and_symmetrically() {
+    replay("contact_bits", checks::contact_bits);
+}
+
+/// Doubles of every class (NaN, ±∞, subnormal, zero, huge) half the time, and
+/// moderate values the other half, so that definite forms are frequent.
+fn double() -> impl Strategy<Value = f64> {
+    prop_oneof![any::<f64>(), -4.0..4.0f64]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn generated_scenes_are_refused_with_their_place_or_packed(
+        bytes in proptest::collection::vec(any::<u8>(), 0..120)
+    ) {
+        checks::scene_keys(&bytes);
+    }
+
+    #[test]
+    fn contact_answers_are_finite_and_symmetric_or_typed_errors(
+        r in [double(), double(), double()],
+        q1 in [double(), double(), double(), double(), double(), double()],
+        q2 in [double(), double(), double(), double(), double(), double()],
+        k in -8i32..8,
+    ) {
+        checks::check_pair(&r, &q1, &q2, if k == 0 { 1 } else { k });
+    }
+}
