@@ -34,7 +34,7 @@ impl<'a> Choices<'a> {
 const LAWS: [&str; 5] = ["size", "aspect_ratio", "b_over_a", "c_over_a", "c_over_b"];
 
 /// Every table of a scene with its documented keys (`src/io/scene/raw.rs`).
-const TABLES: [(&str, &[&str]); 10] = [
+const TABLES: [(&str, &[&str]); 11] = [
     ("", &["seed", "grains", "target_fraction"]),
     ("box", &["size", "boundary"]),
     ("phase", &["name", "share"]),
@@ -97,8 +97,10 @@ const TABLES: [(&str, &[&str]); 10] = [
             "restore",
             "effort",
             "unjam",
+            "gap",
         ],
     ),
+    ("units", &["length", "stress"]),
     (
         "output",
         &[
@@ -214,7 +216,7 @@ const OTHERS: [&str; 36] = [
 ];
 
 /// Words some keys take, besides the pools above.
-const WORDS: [&str; 14] = [
+const WORDS: [&str; 20] = [
     "\"periodic\"",
     "\"reflecting\"",
     "\"volume\"",
@@ -229,6 +231,12 @@ const WORDS: [&str; 14] = [
     "\"matrix\"",
     "\"file\"",
     "\"missing.csv\"",
+    "\"um\"",
+    "\"µm\"",
+    "\"mm\"",
+    "\"MPa\"",
+    "\"GPa\"",
+    "\"Pa\"",
 ];
 
 /// One `key = value` line in table `table` (`phase.size` etc. are those of phase
@@ -351,6 +359,7 @@ fn render(entries: &[Entry], phases: usize) -> String {
     }
     for table in [
         "packing",
+        "units",
         "output",
         "matrix.elastic",
         "matrix.damask",
