@@ -1,7 +1,8 @@
 //! Error against run time of every contact method on the reference sets.
 //!
-//! `cargo bench --bench contact` prints the tables, rewrites the contact section of
-//! `BENCHMARKS.md` (between its markers) and draws `docs/contact_error_vs_time.png`.
+//! `cargo bench --bench contact --features hoomd-baseline` prints the tables, rewrites
+//! the contact section of `BENCHMARKS.md` (between its markers) and draws
+//! `docs/contact_error_vs_time.png`.
 //! Set `CONTACT_BENCH_DRY=1` to print only.
 
 mod common;
@@ -312,7 +313,7 @@ fn main() {
     let mut by_category = String::new();
     writeln!(
         report,
-        "Command: `cargo bench --bench contact`. Machine: {}.\n",
+        "Command: `cargo bench --bench contact --features hoomd-baseline`. Machine: {}.\n",
         common::machine()
     )
     .unwrap();
