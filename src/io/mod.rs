@@ -9,3 +9,4 @@ pub mod scene;
 pub mod texture;
 pub mod voxel;
 pub mod vtk;
+mod zlib_blocks;

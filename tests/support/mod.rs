@@ -7,3 +7,4 @@ pub mod octree;
 pub mod packed;
 pub mod scene;
 pub mod voxel;
+pub mod vtk;

@@ -8,11 +8,10 @@
 //! in independent blocks (compressed in parallel) and base64-encoded, as VTK writes them.
 
 use super::VoxelGrid;
+use crate::io::zlib_blocks;
 use crate::scene::{quaternion_to_euler, LengthUnit};
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
-use flate2::write::ZlibEncoder;
-use flate2::Compression;
 use rayon::prelude::*;
 use std::io::{self, Write};
 
@@ -140,19 +139,11 @@ fn write_compressed<T: Sync>(
             for v in chunk {
                 bytes(v, &mut raw);
             }
-            let mut z = ZlibEncoder::new(Vec::new(), Compression::fast());
-            z.write_all(&raw)?;
-            z.finish()
+            zlib_blocks::compress(&raw)
         })
         .collect::<io::Result<_>>()?;
-    let total = values.len() * width;
-    let mut header = vec![
-        blocks.len() as u64,
-        BLOCK_BYTES as u64,
-        (total % BLOCK_BYTES) as u64,
-    ];
-    header.extend(blocks.iter().map(|b| b.len() as u64));
-    let header: Vec<u8> = header.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let sizes: Vec<u64> = blocks.iter().map(|b| b.len() as u64).collect();
+    let header = zlib_blocks::header(BLOCK_BYTES, values.len() * width, &sizes);
     out.write_all(STANDARD.encode(header).as_bytes())?;
     out.write_all(STANDARD.encode(blocks.concat()).as_bytes())
 }

@@ -13,8 +13,7 @@ use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::io::{self, BufReader, BufWriter, Read, Seek, SeekFrom, Write};
 
-use flate2::write::ZlibEncoder;
-use flate2::Compression;
+use crate::io::zlib_blocks;
 
 /// Uncompressed bytes of one compressed block. VTK's readers take any size; VTK's own
 /// writers use 32 KiB. Small blocks cost a `u64` each in the header, large ones memory
@@ -178,13 +177,9 @@ fn spill_array(array: &mut Array, items: usize, spill: &mut dyn Write) -> io::Re
     }
     total += raw.len();
     compress_blocks(&raw, &mut sizes, spill)?;
-    let mut header = vec![sizes.len() as u64, BLOCK_BYTES as u64];
-    header.push((total % BLOCK_BYTES) as u64);
-    let bytes = sizes.iter().sum();
-    header.extend(sizes);
     Ok(Spilled {
-        header: header.iter().flat_map(|v| v.to_le_bytes()).collect(),
-        bytes,
+        header: zlib_blocks::header(BLOCK_BYTES, total, &sizes),
+        bytes: sizes.iter().sum(),
     })
 }
 
@@ -193,11 +188,7 @@ fn spill_array(array: &mut Array, items: usize, spill: &mut dyn Write) -> io::Re
 fn compress_blocks(raw: &[u8], sizes: &mut Vec<u64>, out: &mut dyn Write) -> io::Result<()> {
     let blocks: Vec<Vec<u8>> = raw
         .par_chunks(BLOCK_BYTES)
-        .map(|block| {
-            let mut z = ZlibEncoder::new(Vec::with_capacity(block.len() / 4), Compression::fast());
-            z.write_all(block)?;
-            z.finish()
-        })
+        .map(zlib_blocks::compress)
         .collect::<io::Result<_>>()?;
     for b in blocks {
         out.write_all(&b)?;
