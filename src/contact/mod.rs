@@ -7,6 +7,7 @@
 
 mod bernstein;
 mod dd;
+mod dimension;
 mod direct;
 mod ellipsoid;
 mod error;
@@ -26,6 +27,9 @@ mod sym;
 mod test_pairs;
 pub mod wang;
 
+pub use dimension::{
+    ellipse_angle, ellipse_quaternion, ellipse_semi_axes, embed_form, Dimension, PLANE_NORMAL,
+};
 pub use ellipsoid::{
     ellipsoid_volume, equivalent_diameter, sphere_diameter, Ellipsoid, ShapeError,
     QUATERNION_NORM_TOL,

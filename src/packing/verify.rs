@@ -150,10 +150,7 @@ mod tests {
     }
 
     fn domain(boundary: Boundary) -> Domain {
-        Domain {
-            size: [10.0, 10.0, 10.0],
-            boundary,
-        }
+        Domain::new([10.0, 10.0, 10.0], boundary)
     }
 
     #[test]

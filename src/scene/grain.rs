@@ -3,6 +3,7 @@
 use super::{
     triaxial_semi_axes, GrainCount, Measured, MeasuredGrain, Orientation, Phase, Scene, MAX_GRAINS,
 };
+use crate::contact::{ellipse_quaternion, ellipse_semi_axes, Dimension, PLANE_NORMAL};
 use crate::laws::MAX_DRAWS;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -48,6 +49,8 @@ pub struct GrainSpec {
     /// orientation in the sample): scalar-first unit quaternion, `q0 ≥ 0`. Identity
     /// until [`Scene::sample_crystals`] draws it.
     pub crystal: [f64; 4],
+    /// An ellipsoid, or an ellipse embedded as one (see [`Dimension`]).
+    pub dimension: Dimension,
 }
 
 impl GrainSpec {
@@ -69,12 +72,35 @@ impl GrainSpec {
             tilt,
             turn_axis: None,
             crystal: [1.0, 0.0, 0.0, 0.0],
+            dimension: Dimension::Three,
         }
     }
 
-    /// Target volume `π d³/6`.
+    /// An ellipse of equivalent-circle diameter `d` and aspect ratio `α = a1/a2`, its
+    /// first semi-axis at angle `theta` from `x`: `a2 = (d/2) α^{−1/2}`, `a1 = α a2`
+    /// (so `a1 a2 = (d/2)²`), embedded as [`ellipse_semi_axes`] turned about `z`, free
+    /// to turn about `z`.
+    pub fn ellipse(phase: usize, diameter: f64, aspect_ratio: f64, theta: f64) -> Self {
+        let a2 = 0.5 * diameter / aspect_ratio.sqrt();
+        Self {
+            phase,
+            semi_axes: ellipse_semi_axes(aspect_ratio * a2, a2),
+            quaternion: ellipse_quaternion(theta),
+            diameter,
+            aspect_ratio,
+            tilt: None,
+            turn_axis: Some(PLANE_NORMAL),
+            crystal: [1.0, 0.0, 0.0, 0.0],
+            dimension: Dimension::Two,
+        }
+    }
+
+    /// Target measure: volume `π d³/6`, or area `π d²/4` for an ellipse.
     pub fn volume(&self) -> f64 {
-        PI / 6.0 * self.diameter.powi(3)
+        match self.dimension {
+            Dimension::Three => PI / 6.0 * self.diameter.powi(3),
+            Dimension::Two => self.dimension.measure_of_diameter(self.diameter),
+        }
     }
 }
 

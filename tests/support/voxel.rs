@@ -30,7 +30,7 @@ pub fn domain(size: [f64; 3], periodic: bool) -> Domain {
     } else {
         Boundary::Reflecting
     };
-    Domain { size, boundary }
+    Domain::new(size, boundary)
 }
 
 /// A uniformly random unit quaternion.

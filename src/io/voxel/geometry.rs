@@ -236,10 +236,7 @@ mod tests {
         } else {
             Boundary::Reflecting
         };
-        let domain = Domain {
-            size: [2.0, 3.0, 4.0],
-            boundary,
-        };
+        let domain = Domain::new([2.0, 3.0, 4.0], boundary);
         Lattice::new(&domain, [4, 6, 8]).unwrap()
     }
 

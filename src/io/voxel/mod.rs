@@ -57,7 +57,7 @@
 //!     id: 0, phase: 0, centre: [0.0; 3], semi_axes: [3.0, 2.0, 2.0],
 //!     quaternion: [1.0, 0.0, 0.0, 0.0],
 //! };
-//! let domain = Domain { size: [10.0; 3], boundary: Boundary::Periodic };
+//! let domain = Domain::new([10.0; 3], Boundary::Periodic);
 //! let grid = voxelise(&[grain], &domain, [10, 10, 10], RveFill::Matrix, 1).unwrap();
 //! // The grain sits on a corner: it shows in all eight corners of the periodic box.
 //! assert_eq!(grid.material[grid.index(0, 0, 0)], 0);

@@ -49,7 +49,7 @@ pub const EULER_ARRAYS: [&str; 3] = ["phi1", "Phi", "phi2"];
 /// use grainpack::scene::{Boundary, Domain, LengthUnit};
 /// use grainpack::io::voxel::{voxelise, write_vti};
 /// use grainpack::scene::RveFill;
-/// let domain = Domain { size: [1.0; 3], boundary: Boundary::Periodic };
+/// let domain = Domain::new([1.0; 3], Boundary::Periodic);
 /// let grid = voxelise(&[], &domain, [2, 3, 4], RveFill::Matrix, 1).unwrap();
 /// let mut out = Vec::new();
 /// write_vti(&grid, LengthUnit::Micrometre, None, &mut out).unwrap();

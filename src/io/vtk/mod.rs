@@ -27,7 +27,7 @@
 //!     semi_axes: [2.0, 1.0, 1.0],
 //!     quaternion: [1.0, 0.0, 0.0, 0.0],
 //! };
-//! let domain = Domain { size: [10.0; 3], boundary: Boundary::Periodic };
+//! let domain = Domain::new([10.0; 3], Boundary::Periodic);
 //! let mut vtu = Vec::new();
 //! write_grains_vtu(&mut vtu, &[grain], &domain, &VtkSpec::default(), None)?;
 //! assert!(String::from_utf8_lossy(&vtu).contains(r#"NumberOfCells="320""#));

@@ -295,10 +295,7 @@ mod tests {
         }
     }
 
-    const PERIODIC: Domain = Domain {
-        size: [10.0, 10.0, 10.0],
-        boundary: Boundary::Periodic,
-    };
+    const PERIODIC: Domain = Domain::new([10.0, 10.0, 10.0], Boundary::Periodic);
 
     #[test]
     fn a_grain_inside_the_box_has_no_copies() {

@@ -21,6 +21,7 @@ fn grain(axes: [f64; 3], q: [f64; 4]) -> GrainSpec {
         tilt: None,
         turn_axis: None,
         crystal: [1.0, 0.0, 0.0, 0.0],
+        dimension: crate::contact::Dimension::Three,
     }
 }
 
@@ -48,10 +49,7 @@ fn energy(state: &State, big_s: f64) -> f64 {
 
 #[test]
 fn forces_and_torques_are_minus_the_gradient_of_the_energy() {
-    let domain = Domain {
-        size: [30.0; 3],
-        boundary: Boundary::Periodic,
-    };
+    let domain = Domain::new([30.0; 3], Boundary::Periodic);
     let mut state = two_grains(&domain);
     let big_s = 1.1;
     let mut f = Forces::default();
@@ -99,10 +97,7 @@ fn forces_and_torques_are_minus_the_gradient_of_the_energy() {
 
 #[test]
 fn wall_forces_and_torques_are_minus_the_gradient_of_the_energy() {
-    let domain = Domain {
-        size: [4.0, 30.0, 30.0],
-        boundary: Boundary::Reflecting,
-    };
+    let domain = Domain::new([4.0, 30.0, 30.0], Boundary::Reflecting);
     let mut state = two_grains(&domain);
     // Grain 0 pokes through the low x wall only.
     state.centres = vec![[1.5, 10.0, 10.0], [2.0, 20.0, 20.0]];
@@ -147,10 +142,7 @@ fn wall_forces_and_torques_are_minus_the_gradient_of_the_energy() {
 
 #[test]
 fn two_spheres_feel_twice_their_overlap() {
-    let domain = Domain {
-        size: [30.0; 3],
-        boundary: Boundary::Periodic,
-    };
+    let domain = Domain::new([30.0; 3], Boundary::Periodic);
     let specs = [
         grain([1.0; 3], [1.0, 0.0, 0.0, 0.0]),
         grain([2.0; 3], [1.0, 0.0, 0.0, 0.0]),

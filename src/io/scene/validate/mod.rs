@@ -111,7 +111,7 @@ fn domain(src: &Source, raw: &Spanned<RawBox>) -> Result<Domain, SceneError> {
         None | Some(RawBoundary::Periodic) => Boundary::Periodic,
         Some(RawBoundary::Reflecting) => Boundary::Reflecting,
     };
-    Ok(Domain { size, boundary })
+    Ok(Domain::new(size, boundary))
 }
 
 fn phase(
