@@ -26,8 +26,8 @@
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
 //!    counts as jammed at that scale. A first jam that is *shallow* (the target just
 //!    above the jamming point: the relaxation from random positions creeps, and is cut
-//!    after [`trial_steps`](ProtocolParams::trial_steps) by the jamming test's
-//!    patience) sets no bound: the state is compressed by 2 % of scale and relaxed
+//!    after [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by
+//!    the jamming test's patience) sets no bound: the state is compressed by 2 % of scale and relaxed
 //!    again until a jam is deep, and the search starts from there, so that a start
 //!    just above jamming costs and reaches about what one far above it does (`effort.rs`,
 //!    `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed state is then
@@ -173,9 +173,10 @@ pub fn pack(
         } else {
             trial_steps(&protocol, params.effort)
         };
-        // Shallow relaxations from random positions creep (module `jamming`).
+        // Shallow relaxations from random positions creep (module `jamming`); below
+        // `effort = 1` they are cut as soon as a trial's budget runs out.
         fire.patience = if quenching {
-            protocol.trial_steps
+            trial_steps(&protocol, params.effort)
         } else {
             u64::MAX
         };
