@@ -4,7 +4,7 @@
 //! this is the grading of the packed aggregate, the figure a concrete technologist
 //! reads; the number law the grains are drawn from is compared in `diameter`.
 
-use crate::contact::{ellipsoid_volume, equivalent_diameter};
+use crate::contact::{ellipsoid_volume, equivalent_diameter, Dimension};
 use crate::laws::{Distribution, TableBasis, TableLaw};
 use crate::packing::PackedGrain;
 use serde::Serialize;
@@ -43,6 +43,7 @@ pub(crate) fn size_table(
             let w = match table.basis {
                 TableBasis::Number => 1.0,
                 TableBasis::Volume => ellipsoid_volume(g.semi_axes),
+                TableBasis::Area => Dimension::Two.measure(g.semi_axes),
             };
             (equivalent_diameter(g.semi_axes), w)
         })
@@ -66,6 +67,7 @@ pub(crate) fn table_statistics(table: &TableLaw, weighted: &[(f64, f64)]) -> Siz
         by: match table.basis {
             TableBasis::Number => "number",
             TableBasis::Volume => "volume",
+            TableBasis::Area => "area",
         },
         sizes: table.x.to_vec(),
         target: table.fraction.to_vec(),

@@ -11,15 +11,17 @@ use std::f64::consts::PI;
 use std::ops::Range;
 use toml::Spanned;
 
-/// `[phase.size]` or `[phase.aspect_ratio]` (at key path `key`).
+/// `[phase.size]` or `[phase.aspect_ratio]` (at key path `key`) of a scene in
+/// `dimension` (which decides what a table's `by` may be).
 pub(super) fn distribution(
     src: &Source,
     key: &str,
     raw: &Spanned<RawDistribution>,
+    dimension: Dimension,
 ) -> Result<Distribution, SceneError> {
     let r = raw.get_ref();
     if *r.distribution.get_ref() == RawFamily::Table {
-        return super::table::table(src, key, raw);
+        return super::table::table(src, key, raw, dimension);
     }
     if let Some((name, span)) = super::table::table_keys(r).into_iter().flatten().next() {
         return Err(src.invalid(

@@ -205,7 +205,10 @@ fn phase(
                 measured::measured(src, &format!("{key}.measured"), m, domain.dimension)?;
             (Some(m), size)
         }
-        (None, Some(s)) => (None, distribution(src, &format!("{key}.size"), s)?),
+        (None, Some(s)) => (
+            None,
+            distribution(src, &format!("{key}.size"), s, domain.dimension)?,
+        ),
         (None, None) => {
             return Err(src.missing(
                 format!("{key}.size"),
@@ -249,7 +252,7 @@ fn phase(
     }
     let aspect_ratio = match &p.aspect_ratio {
         None => Distribution::Constant { value: 1.0 },
-        Some(a) => distribution(src, &format!("{key}.aspect_ratio"), a)?,
+        Some(a) => distribution(src, &format!("{key}.aspect_ratio"), a, domain.dimension)?,
     };
     let orientation = match &p.orientation {
         None => Orientation::Random,
