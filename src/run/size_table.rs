@@ -43,7 +43,7 @@ pub(crate) fn size_table(
         .map(|g| {
             let w = match table.basis {
                 TableBasis::Number => 1.0,
-                TableBasis::Volume => dimension.measure(g.semi_axes),
+                TableBasis::Volume | TableBasis::Area => dimension.measure(g.semi_axes),
             };
             (dimension.equivalent_diameter(g.semi_axes), w)
         })
@@ -67,6 +67,7 @@ pub(crate) fn table_statistics(table: &TableLaw, weighted: &[(f64, f64)]) -> Siz
         by: match table.basis {
             TableBasis::Number => "number",
             TableBasis::Volume => "volume",
+            TableBasis::Area => "area",
         },
         sizes: table.x.to_vec(),
         target: table.fraction.to_vec(),
