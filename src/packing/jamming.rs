@@ -264,6 +264,11 @@ mod tests {
         assert!(deep > 2000, "{deep}");
         // Without a patience, the shallow creep runs on.
         assert_eq!(jammed_at(creep, 20_000, 4e-6), None);
+        // A shallow relaxation on its way to clean (falling faster than any power) is
+        // not cut at a patience shorter than its clearing time ([`CREEP`]).
+        let clearing = |t: f64| 1e-3 * (-t / 150.0).exp();
+        let mut test = JamTest::new(WINDOW, SLOPE, 4e-6, RESOLUTION, 100);
+        assert!((1..=600u64).all(|t| test.step(clearing(t as f64), 0.0) == Verdict::Relaxing));
     }
 
     /// An energy converging to a positive plateau is jammed soon after it settles, not
