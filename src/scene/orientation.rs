@@ -47,7 +47,8 @@ pub enum Orientation {
         quaternion: [f64; 4],
     },
     /// Fibres: the first axis of every grain along `axis`, by the shortest rotation from
-    /// x to `axis`.
+    /// x to `axis`. A 2D scene's `angle` θ is the axis `(cos θ, sin θ, 0)`, a rotation
+    /// about z.
     Aligned {
         /// Unit vector.
         axis: [f64; 3],
@@ -306,6 +307,38 @@ mod tests {
         let q = tilt_quaternion(Axis::Z, -0.25 * PI);
         let back = tilt_angle(q, Axis::Z, &VonMises::new(PI, 1.0));
         assert!((back - 1.75 * PI).abs() < 1e-14, "{back}");
+    }
+
+    /// A 2D grain's angle: uniform on [−π/2, π/2) for `random` (mean of `cos 2θ`
+    /// within 5 standard errors `1/√(2n)` of 0), the axis' angle for `aligned`, the
+    /// quaternion's for `fixed`; a tilt gives its angle twice.
+    #[test]
+    fn angles_in_the_plane_follow_the_kind() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let n = 20_000;
+        let mut mean_cos = 0.0;
+        for _ in 0..n {
+            let (t, tilt) = Orientation::Random.sample_angle(&mut rng).unwrap();
+            assert!((-0.5 * PI..0.5 * PI).contains(&t) && tilt.is_none());
+            mean_cos += (2.0 * t).cos() / f64::from(n);
+        }
+        assert!(
+            mean_cos.abs() < 5.0 / (2.0 * f64::from(n)).sqrt(),
+            "{mean_cos}"
+        );
+        let (s, c) = 0.4f64.sin_cos();
+        let aligned = Orientation::Aligned { axis: [c, s, 0.0] };
+        assert!((aligned.sample_angle(&mut rng).unwrap().0 - 0.4).abs() < TOL);
+        let fixed = Orientation::Fixed {
+            quaternion: crate::contact::ellipse_quaternion(-1.2),
+        };
+        assert!((fixed.sample_angle(&mut rng).unwrap().0 + 1.2).abs() < 1e-14);
+        let tilt = Orientation::Tilt {
+            axis: Axis::Z,
+            angle: VonMises::new(0.3, 5.0),
+        };
+        let (t, again) = tilt.sample_angle(&mut rng).unwrap();
+        assert_eq!(Some(t), again);
     }
 
     /// `rot(axis, θ) ⊗ p` with `p` the cyclic permutation taking x, y, z to the next
