@@ -58,6 +58,11 @@ fn contact_bit_patterns_of_the_corpus_answer_finitely_and_symmetrically() {
     replay("contact_bits", checks::contact_bits);
 }
 
+#[test]
+fn contact_bit_patterns_of_ellipses_in_the_corpus_name_2d_entries_and_answer_as_embedded() {
+    replay("contact_bits_2d", checks::contact_bits_2d);
+}
+
 /// Doubles of every class (NaN, ±∞, subnormal, zero, huge) half the time, and
 /// moderate values the other half, so that definite forms are frequent.
 fn double() -> impl Strategy<Value = f64> {
@@ -82,5 +87,15 @@ proptest! {
         k in -8i32..8,
     ) {
         checks::check_pair(&r, &q1, &q2, if k == 0 { 1 } else { k });
+    }
+
+    #[test]
+    fn contact_answers_of_ellipses_are_the_embedded_pairs_or_name_2d_entries(
+        r in [double(), double()],
+        q1 in [double(), double(), double()],
+        q2 in [double(), double(), double()],
+        k in -8i32..8,
+    ) {
+        checks::check_pair_2d(&r, &q1, &q2, if k == 0 { 1 } else { k });
     }
 }

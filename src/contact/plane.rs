@@ -35,11 +35,12 @@ pub type Vec2 = [f64; 2];
 pub type Sym2 = [f64; 3];
 
 /// The `z` entry a 2×2 form is embedded with: half its trace, the mean of its
-/// eigenvalues (see the module docs). 0 for a point; negative only for a form with a
-/// negative diagonal entry, which the solver rejects naming that entry.
+/// eigenvalues (see the module docs), halved before the sum so that it is finite
+/// whenever the diagonal is. 0 for a point; negative only for a form with a negative
+/// diagonal entry, which the solver rejects naming that entry.
 #[inline(always)]
 pub fn plane_z(q: &Sym2) -> f64 {
-    0.5 * (q[0] + q[2])
+    0.5 * q[0] + 0.5 * q[2]
 }
 
 /// The embedded 3D pair of a 2D pair: `r12` with `z = 0`, each form with [`plane_z`].
@@ -208,6 +209,14 @@ mod tests {
         let s = ellipse_form(1.0, 0.0, 0.5);
         let e = contact_function_2d(&[0.1, 2.0], &s, &s).unwrap_err();
         assert_eq!(e, ContactError::CommonNullDirection);
+    }
+
+    #[test]
+    fn forms_near_the_top_of_the_double_range_keep_a_finite_z() {
+        let q = [1e308, 0.0, 1e308];
+        assert_eq!(plane_z(&q), 1e308);
+        let c = contact_function_2d(&[1e154, 0.0], &q, &q).unwrap();
+        assert!((c.mu2 - 0.25).abs() <= TOL, "{c:?}");
     }
 
     #[test]
