@@ -143,10 +143,10 @@ pub fn contact_functions_fast_2d(
     many(pairs, contact_functions_fast)
 }
 
-fn many(
-    pairs: &[(Vec2, Sym2, Sym2)],
-    solve: fn(&[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>>,
-) -> Vec<Result<Contact, ContactError>> {
+/// A batch function of the 3D pairs.
+type Batch = fn(&[(Vec3, Sym3, Sym3)]) -> Vec<Result<Contact, ContactError>>;
+
+fn many(pairs: &[(Vec2, Sym2, Sym2)], solve: Batch) -> Vec<Result<Contact, ContactError>> {
     let embedded: Vec<_> = pairs.iter().map(|(r, a, b)| embed_pair(r, a, b)).collect();
     let mut out = solve(&embedded);
     for (answer, (_, q1, q2)) in out.iter_mut().zip(pairs) {
