@@ -22,7 +22,8 @@
 //! their sizes differ by more than `2^20` (forms by `2^40`): the smaller form would fail
 //! the pivot floor, and beyond `2^46` its rank test would count it a point. With `z` per
 //! form that linear factor is common to the numerator and the denominator of `f` and
-//! cancels; the reference sets measure the result (`tests/contact_plane.rs`).
+//! cancels. Measured on the 2D mpmath references (`tests/contact_plane.rs`, segments,
+//! points and sizes up to 1e150 apart among them): at most 4.2e-16 relative error of μ².
 
 use super::{
     contact_function, contact_function_fast, contact_functions, contact_functions_fast, embed_form,
