@@ -3,9 +3,11 @@
 //! `cargo bench --bench contact --features hoomd-baseline` prints the tables, rewrites
 //! the contact section of `BENCHMARKS.md` (between its markers) and draws
 //! `docs/contact_error_vs_time.png`.
-//! Set `CONTACT_BENCH_DRY=1` to print only.
+//! Set `CONTACT_BENCH_DRY=1` to print only, `CONTACT_BENCH_SETS=2d` to run (and rewrite)
+//! only the 2D part (its own section of `BENCHMARKS.md`; the plot is left as it is).
 
 mod common;
+mod contact_plane;
 
 use grainpack::contact::{overlaps_prepared, Answer, Method, PreparedEllipsoid, Sym3, Vec3};
 use grainpack::io::cases::CaseTable;
@@ -299,6 +301,20 @@ fn row(name: &str, label: &str, ns: Option<f64>, s: &Stats, decision: bool) -> S
 const HEADER: &str = "| method | set | ns/call (median) | max rel. error | median | p99 | < 1e-15 | < 1e-12 | < 1e-10 | errors |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
 
 fn main() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dry = std::env::var_os("CONTACT_BENCH_DRY").is_some();
+    let machine = format!(
+        "Command: `CONTACT_BENCH_SETS=2d cargo bench --bench contact --features hoomd-baseline`. Machine: {}.\n\n",
+        common::machine()
+    );
+    let plane = format!("{machine}{}", contact_plane::report());
+    print!("{plane}");
+    if !dry {
+        common::update_section(&format!("{root}/BENCHMARKS.md"), "contact-bench-2d", &plane);
+    }
+    if std::env::var("CONTACT_BENCH_SETS").as_deref() == Ok("2d") {
+        return;
+    }
     let sets = [
         load("typical", "contact_typical.csv"),
         load("extreme", "contact_extreme.csv"),
@@ -393,10 +409,9 @@ fn main() {
         report.push_str("\n\n");
     }
     print!("{report}");
-    if std::env::var_os("CONTACT_BENCH_DRY").is_some() {
+    if dry {
         return;
     }
-    let root = env!("CARGO_MANIFEST_DIR");
     common::update_section(&format!("{root}/BENCHMARKS.md"), "contact-bench", &report);
     plot(&format!("{root}/docs/contact_error_vs_time.png"), &points);
     eprintln!("wrote BENCHMARKS.md (contact section) and docs/contact_error_vs_time.png");

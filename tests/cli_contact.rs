@@ -211,3 +211,100 @@ fn batch_writes_what_accurate_writes() {
     assert_eq!(outputs[0].lines().count(), 1003);
     assert!(outputs[0] == outputs[1], "batch and accurate differ");
 }
+
+const HEADER_2D: &str = "r0,r1,q1_0,q1_1,q1_2,q2_0,q2_1,q2_2";
+
+/// A 2D file: ellipses, read as the 3D pair they embed as; the same columns out.
+#[test]
+fn contact_reads_a_2d_file_with_the_same_output_columns() {
+    let dir = scratch("plane");
+    let cases = dir.join("cases.csv");
+    // Two unit circles 3 apart (μ² = 9/4), and a circle of radius 2 and a point at
+    // (1, 1): μ² = rᵀQ⁻¹r = 2/4 at λ = 0.
+    let text = format!("{HEADER_2D},label\n3,0,1,0,1,1,0,1,a\n1,1,4,0,4,0,0,0,p\n");
+    std::fs::write(&cases, text).unwrap();
+    for method in ["accurate", "batch", "fast", "batch-fast", "rational"] {
+        let run = pack(&["contact", cases.to_str().unwrap(), "--method", method]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let text = String::from_utf8(run.stdout).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], format!("{HEADER_2D},label,mu2,lambda,stop"));
+        assert_eq!(
+            lines[1],
+            "3,0,1,0,1,1,0,1,a,2.2500000000000000e0,5.0000000000000000e-1,Converged"
+        );
+        let point: Vec<&str> = lines[2].split(',').collect();
+        let mu2: f64 = point[9].parse().unwrap();
+        assert!(
+            (mu2 - 0.5).abs() <= 4.0 * f64::EPSILON,
+            "{method}: {}",
+            lines[2]
+        );
+    }
+    for method in ["overlap", "wang"] {
+        let run = pack(&["contact", cases.to_str().unwrap(), "--method", method]);
+        let text = String::from_utf8(run.stdout).unwrap();
+        assert!(
+            text.contains(",a,false\n") && text.contains(",p,true\n"),
+            "{text}"
+        );
+    }
+}
+
+/// Bad 2D rows are named by line and by the 2D column or entry, and spare the others.
+#[test]
+fn a_bad_2d_row_names_the_2d_entry() {
+    let dir = scratch("plane_bad");
+    let cases = dir.join("cases.csv");
+    let rows = [
+        "3,0,1,0,1,1,0,1,a",
+        "3,0,1,0,1,1,0,-1,neg",
+        "3,0,1,0,1,1,0,inf,inf",
+        "3,0,1,0,1,1,y,1,text",
+        "3,0,1,0,0,1,0,0,parallel",
+    ];
+    std::fs::write(&cases, format!("{HEADER_2D},label\n{}\n", rows.join("\n"))).unwrap();
+    let out = dir.join("out.csv");
+    let run = pack(&[
+        "contact",
+        cases.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&run.stderr);
+    for want in [
+        "line 3: q2 is not positive definite: pivot 1",
+        "line 4: q2[2] is not finite: inf",
+        "line 5: column q2_1: \"y\" is not a number",
+        "line 6: q1 and q2 are both singular along a common direction",
+    ] {
+        assert!(err.contains(want), "{want}: {err}");
+    }
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(
+        lines[0].ends_with(",label,mu2,lambda,stop,error"),
+        "{}",
+        lines[0]
+    );
+    assert!(lines[1].contains(",a,2.25"), "{}", lines[1]);
+    assert_eq!(lines.len(), 6);
+}
+
+/// A header that is neither 2D nor 3D names what each lacks.
+#[test]
+fn a_2d_header_lacking_a_column_is_named() {
+    let dir = scratch("plane_header");
+    let cases = dir.join("cases.csv");
+    std::fs::write(&cases, "r0,r1,q1_0,q1_1,q1_2,q2_0,q2_1\n1,0,1,0,1,1,0\n").unwrap();
+    let run = pack(&["contact", cases.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "{run:?}");
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(err.contains("q2_2 (ellipses)"), "{err}");
+    assert!(run.stdout.is_empty());
+}

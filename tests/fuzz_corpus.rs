@@ -87,6 +87,11 @@ fn generated_scenes_include_valid_and_refused_2d_ones() {
     );
 }
 
+#[test]
+fn contact_bit_patterns_of_ellipses_in_the_corpus_name_2d_entries_and_answer_as_embedded() {
+    replay("contact_bits_2d", checks::contact_bits_2d);
+}
+
 /// Doubles of every class (NaN, ±∞, subnormal, zero, huge) half the time, and
 /// moderate values the other half, so that definite forms are frequent.
 fn double() -> impl Strategy<Value = f64> {
@@ -111,5 +116,15 @@ proptest! {
         k in -8i32..8,
     ) {
         checks::check_pair(&r, &q1, &q2, if k == 0 { 1 } else { k });
+    }
+
+    #[test]
+    fn contact_answers_of_ellipses_are_the_embedded_pairs_or_name_2d_entries(
+        r in [double(), double()],
+        q1 in [double(), double(), double()],
+        q2 in [double(), double(), double()],
+        k in -8i32..8,
+    ) {
+        checks::check_pair_2d(&r, &q1, &q2, if k == 0 { 1 } else { k });
     }
 }

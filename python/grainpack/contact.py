@@ -10,19 +10,22 @@ from . import _grainpack
 
 
 def _rows(r12: Any, q1: Any, q2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
-    """The three arguments as C-contiguous float64 arrays of shapes (n, 3), (n, 6), (n, 6),
-    and whether a single pair (1-D arguments) was given."""
+    """The three arguments as C-contiguous float64 arrays of shapes (n, 3), (n, 6), (n, 6)
+    (ellipsoids) or (n, 2), (n, 3), (n, 3) (ellipses: forms with 3 columns), and whether
+    a single pair (1-D arguments) was given."""
     arrays = [np.ascontiguousarray(a, dtype=np.float64) for a in (r12, q1, q2)]
     single = all(a.ndim == 1 for a in arrays)
     if single:
         arrays = [a.reshape(1, -1) for a in arrays]
     n = next((a.shape[0] for a in arrays if a.ndim == 2), 0)
-    for name, a, cols in zip(("r12", "q1", "q2"), arrays, (3, 6, 6)):
+    plane = arrays[1].ndim == 2 and arrays[1].shape[1] == 3
+    for name, a, cols in zip(("r12", "q1", "q2"), arrays, (2, 3, 3) if plane else (3, 6, 6)):
         if a.ndim != 2 or a.shape[1] != cols or a.shape[0] != n:
             want = f"({cols},)" if single else f"(n, {cols}) with n = {n}"
             raise ValueError(
                 f"{name} has shape {a.shape if not single else a.shape[1:]}, expected {want}"
-                " (r12: (n, 3), q1 and q2: (n, 6), or (3,), (6,), (6,) for one pair)"
+                " (r12: (n, 3), q1 and q2: (n, 6), or (3,), (6,), (6,) for one pair;"
+                " ellipses: (n, 2), (n, 3), (n, 3), or (2,), (3,), (3,))"
             )
     return arrays[0], arrays[1], arrays[2], single
 
@@ -44,10 +47,12 @@ def contact_function(r12: Any, q1: Any, q2: Any, out: np.ndarray | None = None) 
 
     Parameters
     ----------
-    r12 : array_like, shape (n, 3) or (3,)
+    r12 : array_like, shape (n, 3) or (3,); (n, 2) or (2,) for ellipses
         ``c2 − c1``, the centre of the second ellipsoid relative to the first.
-    q1, q2 : array_like, shape (n, 6) or (6,)
-        The quadratic forms, upper triangle row-major, as in pw85.
+    q1, q2 : array_like, shape (n, 6) or (6,); (n, 3) or (3,) for ellipses
+        The quadratic forms, upper triangle row-major, as in pw85: ``[q00, q01, q11]``
+        for ellipses, which are answered as the ellipsoids they are the cross-sections
+        of (the library's ``contact_function_2d``, exactly the ellipses' function).
     out : ndarray, optional
         pw85's full output: shape (2,) for one pair, (n, 2) for n; ``out[..., 0]``
         receives μ² and ``out[..., 1]`` λ, and μ² alone is returned, as pw85 does.
@@ -119,13 +124,26 @@ def contact_geometry(r12: Any, q1: Any, q2: Any) -> ContactGeometry:
 
     Same arguments and errors as :func:`contact_function`; the coincident centres of a
     pair make the normal undefined, and raise ``ValueError`` naming the row. Arrays of
-    shapes (n,), (n,), (n, 3), (n, 3), (n,); for a single pair, floats and (3,) arrays.
+    shapes (n,), (n,), (n, 3), (n, 3), (n,); for a single pair, floats and (3,) arrays
+    ((n, 2) and (2,) for ellipses).
     """
     r, a, b, single = _rows(r12, q1, q2)
     mu2, lam, point, normal, gap = _grainpack.contact_geometry_rows(r, a, b)
+    # Ellipses: the embedded point and normal lie in the plane z = 0.
+    point, normal = point[:, : r.shape[1]], normal[:, : r.shape[1]]
     if single:
         return ContactGeometry(float(mu2[0]), float(lam[0]), point[0], normal[0], float(gap[0]))
     return ContactGeometry(mu2, lam, point, normal, gap)
+
+
+def ellipse_form(semi_axes: Any, angles: Any) -> np.ndarray:
+    """``Q = R diag(a1², a2²) Rᵀ`` of ellipses as ``[q00, q01, q11]`` (n, 3), the layout
+    :func:`contact_function` takes for ellipses, from semi-axes (n, 2) and the angles
+    (n,) of the first semi-axis from x, in radians."""
+    a = np.asarray(semi_axes, dtype=np.float64)
+    c, s = np.cos(angles), np.sin(angles)
+    p, q = a[..., 0] ** 2, a[..., 1] ** 2
+    return np.ascontiguousarray(np.stack([p * c * c + q * s * s, (p - q) * c * s, p * s * s + q * c * c], -1))
 
 
 def rotation_matrices(quaternions: Any) -> np.ndarray:

@@ -1,12 +1,14 @@
 //! The narrow phase over numpy arrays: `r12` (n, 3), `q1` and `q2` (n, 6), C-contiguous
-//! float64 (the Python wrapper in `grainpack/__init__.py` converts and checks shapes).
+//! float64 (the Python wrapper in `grainpack/__init__.py` converts and checks shapes);
+//! or ellipses, `r12` (n, 2) and 2×2 forms (n, 3), answered as the embedded pairs
+//! (`embed_pair`), with errors naming the 2D entries.
 //!
 //! Every function computes all rows with the GIL released, then reports the first row
 //! that has no answer as an exception naming it (see `row_error`).
 
 use grainpack::contact::{
-    contact_functions, contact_geometry, overlaps, Contact, ContactError, ContactGeometry, Stop,
-    Sym3, Vec3,
+    contact_functions, contact_geometry, embed_pair, in_plane_terms, overlaps, Contact,
+    ContactError, ContactGeometry, Stop, Sym3, Vec3,
 };
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -17,23 +19,39 @@ use pyo3::prelude::*;
 /// cache, large enough that the call overhead does not show.
 const CHUNK: usize = 4096;
 
-/// The pairs of the three arrays, row by row.
+/// The pairs of the three arrays, row by row: ellipsoids, or ellipses when `plane`.
 struct Pairs<'a> {
     r12: &'a [f64],
     q1: &'a [f64],
     q2: &'a [f64],
+    plane: bool,
 }
 
 impl Pairs<'_> {
     fn len(&self) -> usize {
-        self.r12.len() / 3
+        self.r12.len() / if self.plane { 2 } else { 3 }
     }
 
+    /// Row `i`, a 2D row as the pair it embeds as.
     fn get(&self, i: usize) -> (Vec3, Sym3, Sym3) {
+        if self.plane {
+            let r = [self.r12[2 * i], self.r12[2 * i + 1]];
+            let form = |q: &[f64]| -> [f64; 3] { q[3 * i..3 * i + 3].try_into().expect("3") };
+            return embed_pair(&r, &form(self.q1), &form(self.q2));
+        }
         let r: Vec3 = self.r12[3 * i..3 * i + 3].try_into().expect("3 columns");
         let q1: Sym3 = self.q1[6 * i..6 * i + 6].try_into().expect("6 columns");
         let q2: Sym3 = self.q2[6 * i..6 * i + 6].try_into().expect("6 columns");
         (r, q1, q2)
+    }
+
+    /// An error about row `i`'s (embedded) pair, naming the entries as given.
+    fn restated(&self, i: usize, e: ContactError) -> (usize, ContactError) {
+        if !self.plane {
+            return (i, e);
+        }
+        let form = |q: &[f64]| -> [f64; 3] { q[3 * i..3 * i + 3].try_into().expect("3") };
+        (i, in_plane_terms(e, &form(self.q1), &form(self.q2)))
     }
 
     /// `f` of every row, or the first row without an answer and its error.
@@ -44,7 +62,7 @@ impl Pairs<'_> {
         (0..self.len())
             .map(|i| {
                 let (r, a, b) = self.get(i);
-                f(&r, &a, &b).map_err(|e| (i, e))
+                f(&r, &a, &b).map_err(|e| self.restated(i, e))
             })
             .collect()
     }
@@ -58,7 +76,10 @@ fn pairs<'a>(
     q2: &'a PyReadonlyArray2<'_, f64>,
 ) -> PyResult<Pairs<'a>> {
     let n = r12.shape()[0];
-    for (name, a, cols) in [("r12", r12, 3), ("q1", q1, 6), ("q2", q2, 6)] {
+    // Ellipses when the forms have 3 columns (r12 must then have 2).
+    let plane = q1.shape().get(1) == Some(&3);
+    let (r_cols, q_cols) = if plane { (2, 3) } else { (3, 6) };
+    for (name, a, cols) in [("r12", r12, r_cols), ("q1", q1, q_cols), ("q2", q2, q_cols)] {
         if a.shape() != [n, cols] {
             return Err(PyValueError::new_err(format!(
                 "{name} has shape {:?}, expected ({n}, {cols})",
@@ -74,6 +95,7 @@ fn pairs<'a>(
         r12: slice("r12", r12)?,
         q1: slice("q1", q1)?,
         q2: slice("q2", q2)?,
+        plane,
     })
 }
 
@@ -99,7 +121,7 @@ fn contact_rows(p: &Pairs) -> Result<(Vec<f64>, Vec<f64>), (usize, ContactError)
         chunk.clear();
         chunk.extend((start..n.min(start + CHUNK)).map(|i| p.get(i)));
         for (k, result) in contact_functions(&chunk).into_iter().enumerate() {
-            let c: Contact = result.map_err(|e| (start + k, e))?;
+            let c: Contact = result.map_err(|e| p.restated(start + k, e))?;
             if c.stop == Stop::MaxIterations {
                 let iterations = c.iterations;
                 return Err((start + k, ContactError::NotConverged { iterations }));

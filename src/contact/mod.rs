@@ -3,7 +3,9 @@
 //! Every function here takes the pair in relative form: `r12 = c2 - c1` and the two
 //! quadratic forms `q1`, `q2` (upper triangle of the symmetric positive-definite matrix
 //! `Q = R diag(a1², a2², a3²) Rᵀ`, row-major: `q0 q1 q2 / q3 q4 / q5`, as in pw85).
-//! Boxes, periodic images and ids are the caller's business.
+//! Boxes, periodic images and ids are the caller's business. Ellipses (2×2 forms
+//! `[q00, q01, q11]`) take the same functions with the suffix `_2d`, which solve the
+//! embedded 3D pair (module `plane`).
 
 mod bernstein;
 mod dd;
@@ -17,6 +19,7 @@ mod ldl;
 mod method;
 mod overlap;
 mod perram_wertheim;
+mod plane;
 mod prepared;
 pub mod rational;
 mod refine;
@@ -43,6 +46,10 @@ pub use perram_wertheim::{
     contact_function, contact_function_fast, contact_functions, contact_functions_fast,
     fast_condition, CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL, FAST_MAX_CONDITION, FAST_ROUNDING,
     FAST_TOL, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS, NEAR_END, SINGULAR_PIVOT,
+};
+pub use plane::{
+    contact_function_2d, contact_function_fast_2d, contact_functions_2d, contact_functions_fast_2d,
+    ellipse_form, embed_pair, in_plane_terms, overlaps_2d, plane_z, Sym2, Vec2,
 };
 pub use prepared::PreparedEllipsoid;
 pub use refine::{GAIN_ROUNDING_TOL, REFINEMENT_TOL};

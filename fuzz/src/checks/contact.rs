@@ -3,7 +3,9 @@
 //! typed error.
 
 use grainpack::contact::{
-    contact_function, contact_function_fast, contact_geometry, overlaps, Contact, Stop, Sym3, Vec3,
+    contact_function, contact_function_2d, contact_function_fast, contact_function_fast_2d,
+    contact_functions_2d, contact_geometry, embed_pair, overlaps, overlaps_2d, Contact,
+    ContactError, Stop, Sym2, Sym3, Vec2, Vec3,
 };
 
 /// Relative bound on identities exact in real arithmetic that the accurate method
@@ -94,4 +96,47 @@ pub fn check_pair(r: &Vec3, q1: &Sym3, q2: &Sym3, k: i32) {
             );
         }
     }
+}
+
+/// Checks the 2D contact functions on one pair of ellipses: an error names a 2D entry
+/// that holds the offending value (an index of `r12` below 2, of a form below 3, a
+/// pivot below 2), the batch form answers as the scalar one, and the answers are the
+/// embedded pair's, which [`check_pair`] then holds to the 3D properties.
+pub fn check_pair_2d(r: &Vec2, q1: &Sym2, q2: &Sym2, k: i32) {
+    let input = format!("r12 = {r:?}, q1 = {q1:?}, q2 = {q2:?} (2D)");
+    let named = |e: &ContactError| match *e {
+        ContactError::NotFinite { what, index, value } => {
+            let entries: &[f64] = match what {
+                "r12" => r,
+                "q1" => q1,
+                _ => q2,
+            };
+            let held = entries.get(index).map(|x| x.to_bits() == value.to_bits());
+            assert_eq!(held, Some(true), "{input}: {e}");
+        }
+        ContactError::NotPositiveDefinite { pivot, .. } => assert!(pivot < 2, "{input}: {e}"),
+        _ => {}
+    };
+    let accurate = contact_function_2d(r, q1, q2);
+    let batch = contact_functions_2d(&[(*r, *q1, *q2)]);
+    match (&accurate, &batch[0]) {
+        (Ok(a), Ok(b)) => assert!(a.mu2.to_bits() == b.mu2.to_bits(), "{input}: {a:?} {b:?}"),
+        (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{input}"),
+        (a, b) => panic!("{input}: scalar {a:?}, batch {b:?}"),
+    }
+    for e in [&accurate, &contact_function_fast_2d(r, q1, q2)]
+        .into_iter()
+        .filter_map(|x| x.as_ref().err())
+    {
+        named(e);
+    }
+    if let Err(e) = overlaps_2d(r, q1, q2) {
+        named(&e);
+    }
+    let (r3, a, b) = embed_pair(r, q1, q2);
+    if let Ok(c) = &accurate {
+        let embedded = contact_function(&r3, &a, &b).expect("the embedded pair is answered");
+        assert_eq!(c.mu2.to_bits(), embedded.mu2.to_bits(), "{input}");
+    }
+    check_pair(&r3, &a, &b, k);
 }

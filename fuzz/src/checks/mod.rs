@@ -11,7 +11,7 @@ mod generate;
 mod scene;
 mod tables;
 
-pub use contact::check_pair;
+pub use contact::{check_pair, check_pair_2d};
 pub use generate::{scene_from_choices, Choices};
 pub use scene::{check_scene, SCENE_NAME};
 
@@ -59,4 +59,22 @@ pub fn contact_bits(data: &[u8]) {
     let q1 = [x[3], x[4], x[5], x[6], x[7], x[8]];
     let q2 = [x[9], x[10], x[11], x[12], x[13], x[14]];
     check_pair(&r, &q1, &q2, if k == 0 { 1 } else { k });
+}
+
+/// Arbitrary bit patterns as a pair of ellipses: `r12`, `q1`, `q2` (8 doubles,
+/// little-endian), and one byte for the power of two `r12` is scaled by.
+pub fn contact_bits_2d(data: &[u8]) {
+    let mut x = [0.0; 8];
+    for (v, chunk) in x.iter_mut().zip(data.chunks(8)) {
+        let mut bytes = [0; 8];
+        bytes[..chunk.len()].copy_from_slice(chunk);
+        *v = f64::from_bits(u64::from_le_bytes(bytes));
+    }
+    let k = data.get(64).map_or(1, |&b| i32::from(b % 16) - 8);
+    check_pair_2d(
+        &[x[0], x[1]],
+        &[x[2], x[3], x[4]],
+        &[x[5], x[6], x[7]],
+        if k == 0 { 1 } else { k },
+    );
 }

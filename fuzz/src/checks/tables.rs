@@ -3,7 +3,7 @@
 //! holds NaN or infinity where a number is expected.
 
 use super::scene::{check_error, pack_small};
-use grainpack::contact::Method;
+use grainpack::contact::{ContactError, Dimension, Method};
 use grainpack::io::cases::{write_answers, CaseError, CaseTable, RowError};
 use grainpack::io::scene::SceneError;
 use grainpack::scene::Scene;
@@ -34,8 +34,11 @@ pub fn contact_csv(data: &[u8]) {
         for answer in &answers {
             match answer {
                 Err(RowError::Case(CaseError::Csv { line, .. }))
-                | Err(RowError::Case(CaseError::NotANumber { line, .. }))
-                | Err(RowError::Contact { line, .. }) => in_file(*line),
+                | Err(RowError::Case(CaseError::NotANumber { line, .. })) => in_file(*line),
+                Err(RowError::Contact { line, source }) => {
+                    in_file(*line);
+                    in_plane_terms(table.dimension, source);
+                }
                 _ => {}
             }
         }
@@ -60,6 +63,20 @@ pub fn contact_csv(data: &[u8]) {
             count += 1;
         }
         assert_eq!(count, table.rows.len(), "one written row per row read");
+    }
+}
+
+/// A 2D file's errors name 2D entries: `r12[0..2]`, `q[0..3]`, pivots 0 and 1.
+fn in_plane_terms(dimension: Dimension, error: &ContactError) {
+    if dimension != Dimension::Two {
+        return;
+    }
+    match *error {
+        ContactError::NotFinite { what, index, .. } => {
+            assert!(index < if what == "r12" { 2 } else { 3 }, "{error}");
+        }
+        ContactError::NotPositiveDefinite { pivot, .. } => assert!(pivot < 2, "{error}"),
+        _ => {}
     }
 }
 

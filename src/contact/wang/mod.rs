@@ -29,8 +29,10 @@ use super::scale::{exponent, ldexp, pow2};
 use super::scale::{rescale, validate};
 use super::sym::{adjugate, det, pencil_coefficients, quadratic_form};
 use super::{contact_function, ContactError, Stop, Sym3, Vec3};
+pub use ellipses::{characteristic_polynomial_2d, separated_2d, CUBIC_ROUNDING};
 use negative_axis::max_on_negative_axis;
 
+mod ellipses;
 mod negative_axis;
 #[cfg(test)]
 mod tests;

@@ -1,8 +1,9 @@
 //! A method's answer to every row of a case table, and the table written back with the
 //! answers in new columns (what `pack contact` does).
 
+use super::Case;
 use super::{format_17, CaseError, CaseTable};
-use crate::contact::{Answer, ContactError, Method, Sym3, Vec3};
+use crate::contact::{in_plane_terms, Answer, ContactError, Dimension, Method, Sym3, Vec3};
 use std::io::{self, Write};
 use thiserror::Error;
 
@@ -50,10 +51,22 @@ impl CaseTable {
                 let answer = (evaluated.next()).expect("evaluate_all answers every pair");
                 answer.map_err(|source| RowError::Contact {
                     line: c.line,
-                    source,
+                    source: self.in_input_terms(source, &c),
                 })
             })
             .collect()
+    }
+}
+
+impl CaseTable {
+    /// A method's error about the pair of `case`, naming the entries as the file has
+    /// them (the 2×2 forms' entries in 2D, not the embedded ones).
+    fn in_input_terms(&self, error: ContactError, case: &Case) -> ContactError {
+        let plane = |q: &Sym3| [q[0], q[1], q[3]];
+        match self.dimension {
+            Dimension::Two => in_plane_terms(error, &plane(&case.q1), &plane(&case.q2)),
+            Dimension::Three => error,
+        }
     }
 }
 
