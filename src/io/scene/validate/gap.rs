@@ -2,7 +2,7 @@
 
 use super::super::error::{SceneError, Source};
 use super::super::raw::RawPacking;
-use super::densest;
+use super::plane::densest;
 use crate::scene::{Phase, Scene};
 use toml::Spanned;
 

@@ -10,7 +10,7 @@
 //! scales the given box to `V_g / φ`; without it the box is as given. `grains = N`
 //! cannot be honoured (the drawn count follows from the volumes) and is an error.
 
-use super::densest;
+use super::plane::densest;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::RawScene;
 use crate::scene::{Domain, GrainCount, Measured, MeasuredMode, Phase};

@@ -2,10 +2,12 @@
 //! located.
 
 mod axis;
+mod count;
 mod fisher;
 mod gap;
 mod grain;
 mod measured;
+mod measured_columns;
 mod mixed;
 mod output;
 mod plane;
@@ -16,17 +18,16 @@ mod triaxial;
 mod units;
 
 use super::error::{SceneError, Source};
-use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
+use super::raw::{RawPacking, RawPhase, RawScene};
 use crate::contact::Dimension;
 use crate::laws::Distribution;
 use crate::scene::{
-    mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase,
-    PhaseTexture, Rotation, Scene, Unjam, MAX_GRAINS, MAX_TARGET_FRACTION,
+    Domain, Orientation, PackingParams, Phase, PhaseTexture, Rotation, Scene, Unjam,
 };
 use grain::{distribution, orientation};
+use plane::not_in_2d;
 use serde::Deserialize;
 use std::collections::HashSet;
-use std::ops::Range;
 use toml::de::{DeTable, Deserializer};
 use toml::Spanned;
 
@@ -37,7 +38,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
     let raw = RawScene::deserialize(Deserializer::from(document.clone()))
         .map_err(|e| src.shape(&e, document.get_ref()))?;
 
-    let domain = domain(&src, &raw.domain)?;
+    let domain = plane::domain(&src, &raw.domain)?;
     if raw.phase.is_empty() {
         return Err(src.missing("phase", 0..0, "at least one [[phase]] is needed"));
     }
@@ -72,7 +73,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
     } else if exact.iter().any(|&e| e) {
         mixed::mixed_scene(&src, &raw, domain, &mut phases)?
     } else {
-        (count(&src, &raw, &domain, &phases)?, domain)
+        (count::count(&src, &raw, &domain, &phases)?, domain)
     };
 
     let units = units::units(&src, &raw)?;
@@ -100,60 +101,6 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
     Ok(scene)
 }
 
-fn domain(src: &Source, raw: &Spanned<RawBox>) -> Result<Domain, SceneError> {
-    let raw = raw.get_ref();
-    let size = raw.size.get_ref();
-    if !(size.len() == 2 || size.len() == 3) {
-        return Err(src.invalid_at(
-            "box.size",
-            &raw.size,
-            format!(
-                "must be [Lx, Ly, Lz] (a box of ellipsoids) or [Lx, Ly] (a 2D scene: a \
-                 rectangle of ellipses), not {} lengths",
-                size.len()
-            ),
-        ));
-    }
-    if !size.iter().all(|l| l.is_finite() && *l > 0.0) {
-        return Err(src.invalid_at(
-            "box.size",
-            &raw.size,
-            "every side must be positive and finite",
-        ));
-    }
-    let boundary = match raw.boundary.as_ref().map(|b| *b.get_ref()) {
-        None | Some(RawBoundary::Periodic) => Boundary::Periodic,
-        Some(RawBoundary::Reflecting) => Boundary::Reflecting,
-    };
-    Ok(match *size.as_slice() {
-        [x, y] => Domain::plane([x, y], boundary),
-        _ => Domain::new([size[0], size[1], size[2]], boundary),
-    })
-}
-
-/// The error of a key that has no meaning in a 2D scene, saying why.
-pub(super) fn not_in_2d(
-    src: &Source,
-    key: impl Into<String>,
-    at: Range<usize>,
-    why: &str,
-) -> SceneError {
-    src.invalid(
-        key,
-        at,
-        format!("has no meaning in a 2D scene (box.size = [Lx, Ly]): {why}"),
-    )
-}
-
-/// The densest packing of the scene's grains (ellipsoids or ellipses), as the limit of
-/// `target_fraction`, and their name for messages: [`MAX_TARGET_FRACTION`] in 3D.
-pub(super) fn densest(domain: &Domain) -> (f64, &'static str) {
-    match domain.dimension {
-        Dimension::Three => (MAX_TARGET_FRACTION, "ellipsoids"),
-        Dimension::Two => (Dimension::Two.densest_fraction(), "ellipses"),
-    }
-}
-
 fn phase(
     src: &Source,
     i: usize,
@@ -177,21 +124,7 @@ fn phase(
             return Err(src.invalid_at(format!("{key}.share"), s, "must be positive and finite"))
         }
     };
-    if domain.dimension == Dimension::Two {
-        let triaxial = [
-            ("b_over_a", &p.b_over_a),
-            ("c_over_a", &p.c_over_a),
-            ("c_over_b", &p.c_over_b),
-        ];
-        if let Some((name, Some(v))) = triaxial.into_iter().find(|(_, v)| v.is_some()) {
-            return Err(not_in_2d(
-                src,
-                format!("{key}.{name}"),
-                v.span(),
-                "an ellipse has two semi-axes; give aspect_ratio (a1/a2)",
-            ));
-        }
-    }
+    plane::no_triaxial(src, &key, p, domain.dimension)?;
     let (measured, size) = match (&p.measured, &p.size) {
         (Some(_), Some(s)) => {
             return Err(src.invalid_at(
@@ -322,67 +255,6 @@ fn phase(
         ));
     }
     Ok(phase)
-}
-
-fn count(
-    src: &Source,
-    raw: &RawScene,
-    domain: &Domain,
-    phases: &[Phase],
-) -> Result<GrainCount, SceneError> {
-    let v_grain = mean_grain_volume(phases);
-    let v_box = domain.volume();
-    let (densest, grains) = densest(domain);
-    match (&raw.grains, &raw.target_fraction) {
-        (Some(_), Some(f)) => Err(src.invalid_at(
-            "target_fraction",
-            f,
-            "give either grains or target_fraction, not both",
-        )),
-        (None, None) => {
-            Err(src.missing("grains", 0..0, "give grains (a count) or target_fraction"))
-        }
-        (Some(n), None) => {
-            let count = *n.get_ref();
-            if count == 0 || count > MAX_GRAINS as u64 {
-                return Err(src.invalid_at("grains", n, format!("must lie in [1, {MAX_GRAINS}]")));
-            }
-            let fraction = count as f64 * v_grain / v_box;
-            if fraction > densest {
-                return Err(src.invalid_at(
-                    "grains",
-                    n,
-                    format!(
-                        "that many grains fill an expected {fraction:.3} of the box, beyond the \
-                         densest packing of {grains} ({densest})"
-                    ),
-                ));
-            }
-            Ok(GrainCount::Exactly(count as usize))
-        }
-        (None, Some(f)) => {
-            let fraction = *f.get_ref();
-            if !(fraction > 0.0 && fraction <= densest) {
-                return Err(src.invalid_at(
-                    "target_fraction",
-                    f,
-                    format!(
-                        "must lie in (0, {densest}]: {densest} is the densest known packing of \
-                         {grains}"
-                    ),
-                ));
-            }
-            let expected = fraction * v_box / v_grain;
-            if expected > MAX_GRAINS as f64 {
-                return Err(src.invalid_at(
-                    "target_fraction",
-                    f,
-                    format!("needs about {expected:.3e} grains, more than the limit {MAX_GRAINS}"),
-                ));
-            }
-            Ok(GrainCount::Fraction(fraction))
-        }
-    }
 }
 
 fn packing(

@@ -1,7 +1,7 @@
 //! `[output]` → [`OutputSpec`]: defaults filled in, the RVE's cells resolved against
 //! the box, and every key that cannot take effect rejected rather than ignored.
 
-use super::not_in_2d;
+use super::plane::not_in_2d;
 use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawFill, RawOutput};
