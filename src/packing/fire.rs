@@ -6,7 +6,7 @@
 
 use super::forces::Forces;
 use super::grains::rotate_by;
-use super::jamming::{JamTest, Verdict};
+use super::jamming::{JamTest, Patience, Verdict};
 use super::neighbours::Neighbours;
 use super::state::State;
 use super::{Counters, FireParams, PackError, Progress};
@@ -67,9 +67,9 @@ pub(crate) struct Fire {
     pub restore: f64,
     /// Each grain's turn from its drawn orientation, while restoring.
     turns: Vec<[f64; 3]>,
-    /// Steps after which a shallow relaxation counts as jammed (`u64::MAX`: never; the
-    /// jamming test's patience, module `jamming`).
-    pub patience: u64,
+    /// When a shallow relaxation counts as jammed (the jamming test's patience,
+    /// module `jamming`).
+    pub patience: Patience,
     /// Whether the last relaxation's last energy per grain was deep
     /// ([`DEEP`](super::jamming::DEEP) times the margin's): far above its jamming
     /// point. Meaningful after a relaxation that did not end clean.
@@ -95,7 +95,7 @@ impl Fire {
             restore: 0.0,
             turns: Vec::new(),
             deep: false,
-            patience: u64::MAX,
+            patience: Patience::NONE,
             root_mass: Vec::new(),
             scaled: Vec::new(),
         }

@@ -69,14 +69,35 @@ pub(crate) const NEAR_CLEAN: f64 = 0.25;
 /// steps); BENCHMARKS.md, "issue 27".
 pub(crate) const DEEP: f64 = 1000.0;
 
-/// A shallow relaxation is cut at its patience only while it creeps: while its energy
-/// falls slower than `1/t` over the latest doubling of the steps (−d ln E / d ln t
-/// below `CREEP`). The creep just above jamming falls as `t^−0.3` to `t^−0.1`; a
-/// relaxation on its way to clean falls faster than any power, and is left to finish:
-/// with patiences shorter than its clearing time (`effort` below 1), 10 000 equal
-/// spheres asked for 0.62, clean after 612 steps, were otherwise cut at 100 and took
-/// 1 369 (BENCHMARKS.md, issue 27, second round).
+/// Before its full patience, a shallow relaxation is cut only while it creeps: while
+/// its energy falls slower than `1/t` over the latest doubling of the steps
+/// (−d ln E / d ln t below `CREEP`). The creep just above jamming falls as `t^−0.3` to
+/// `t^−0.1`; a relaxation on its way to clean falls faster than any power, and is left
+/// to its full patience: with a patience shorter than its clearing time (`effort`
+/// below 1), 10 000 equal spheres asked for 0.62, clean after 612 steps, were
+/// otherwise cut at 100 and took 1 369 (BENCHMARKS.md, issue 27, second round).
 pub(crate) const CREEP: f64 = 1.0;
+
+/// When a shallow relaxation counts as jammed (module docs): from `creeping` steps on
+/// while it creeps ([`CREEP`]), from `any` steps on whatever its slope.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Patience {
+    pub creeping: u64,
+    pub any: u64,
+}
+
+impl Patience {
+    /// No patience: a shallow relaxation runs to its plateau or its budget.
+    pub const NONE: Self = Self::of(u64::MAX);
+
+    /// The same patience whatever the slope.
+    pub const fn of(steps: u64) -> Self {
+        Self {
+            creeping: steps,
+            any: steps,
+        }
+    }
+}
 
 /// What the test says after a window.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -97,8 +118,8 @@ pub(crate) struct JamTest {
     floor: f64,
     /// Energy per grain from which a relaxation is deep ([`DEEP`]).
     deep: f64,
-    /// Steps after which a shallow relaxation is jammed (module docs).
-    patience: u64,
+    /// When a shallow relaxation is jammed (module docs).
+    patience: Patience,
     /// The least energy per grain of each finished window.
     minima: Vec<f64>,
     current: f64,
@@ -114,14 +135,13 @@ impl JamTest {
     /// A test judged every `window` steps with plateau slope `slope`, for grains whose
     /// contacts overlapping by the margin have energy `margin_energy` each (per grain).
     /// `resolution` is the bisection's relative resolution (see [`NEAR_CLEAN`]);
-    /// `patience` the steps after which a shallow relaxation is jammed (`u64::MAX`:
-    /// none).
+    /// `patience` when a shallow relaxation is jammed.
     pub fn new(
         window: u64,
         slope: f64,
         margin_energy: f64,
         resolution: f64,
-        patience: u64,
+        patience: Patience,
     ) -> Self {
         Self {
             window,
@@ -166,8 +186,9 @@ impl JamTest {
         let energy = self.minima[now];
         let plateau = energy > 0.0 && latest < self.slope && latest <= before;
         let overlapping = || self.overlaps[mid..].iter().all(|&o| o > self.near_clean);
-        let out_of_patience =
-            self.steps >= self.patience && !self.is_deep(energy) && latest < CREEP;
+        let out_of_patience = !self.is_deep(energy)
+            && (self.steps >= self.patience.any
+                || (self.steps >= self.patience.creeping && latest < CREEP));
         if (plateau && (energy > self.floor || overlapping())) || out_of_patience {
             Verdict::Jammed
         } else {
@@ -202,7 +223,7 @@ mod tests {
         steps: u64,
         margin_energy: f64,
     ) -> Option<u64> {
-        let mut test = JamTest::new(WINDOW, SLOPE, margin_energy, RESOLUTION, u64::MAX);
+        let mut test = JamTest::new(WINDOW, SLOPE, margin_energy, RESOLUTION, Patience::NONE);
         (1..=steps).find(|&t| test.step(e(t as f64), o(t as f64)) == Verdict::Jammed)
     }
 
@@ -222,7 +243,7 @@ mod tests {
     #[test]
     fn half_window_lets_decays_run_and_finds_plateaus() {
         let half = |e: &dyn Fn(f64) -> f64, steps: u64| {
-            let mut test = JamTest::new(WINDOW / 2, SLOPE, 1e-30, RESOLUTION, u64::MAX);
+            let mut test = JamTest::new(WINDOW / 2, SLOPE, 1e-30, RESOLUTION, Patience::NONE);
             (1..=steps).find(|&t| test.step(e(t as f64), 0.0) == Verdict::Jammed)
         };
         assert_eq!(half(&|t| (-t / 3000.0).exp(), 100_000), None);
@@ -249,7 +270,8 @@ mod tests {
     #[test]
     fn a_shallow_relaxation_is_jammed_at_its_patience() {
         let patience = |e: &dyn Fn(f64) -> f64, margin_energy: f64| {
-            let mut test = JamTest::new(WINDOW, SLOPE, margin_energy, RESOLUTION, 1000);
+            let mut test =
+                JamTest::new(WINDOW, SLOPE, margin_energy, RESOLUTION, Patience::of(1000));
             (1..=100_000u64).find(|&t| test.step(e(t as f64), 0.0) == Verdict::Jammed)
         };
         let creep = |t: f64| 1.6e-3 * (t / 500.0).powf(-0.25);
@@ -267,7 +289,11 @@ mod tests {
         // A shallow relaxation on its way to clean (falling faster than any power) is
         // not cut at a patience shorter than its clearing time ([`CREEP`]).
         let clearing = |t: f64| 1e-3 * (-t / 150.0).exp();
-        let mut test = JamTest::new(WINDOW, SLOPE, 4e-6, RESOLUTION, 100);
+        let patience = Patience {
+            creeping: 100,
+            any: 1000,
+        };
+        let mut test = JamTest::new(WINDOW, SLOPE, 4e-6, RESOLUTION, patience);
         assert!((1..=600u64).all(|t| test.step(clearing(t as f64), 0.0) == Verdict::Relaxing));
     }
 

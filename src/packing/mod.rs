@@ -77,6 +77,7 @@ use effort::{
     QUENCH_STEP,
 };
 use fire::{Context, Fire, Outcome};
+use jamming::Patience;
 use neighbours::Neighbours;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -174,11 +175,14 @@ pub fn pack(
             trial_steps(&protocol, params.effort)
         };
         // Shallow relaxations from random positions creep (module `jamming`); below
-        // `effort = 1` they are cut as soon as a trial's budget runs out.
+        // `effort = 1` a creeping one is cut as soon as a trial's budget runs out.
         fire.patience = if quenching {
-            trial_steps(&protocol, params.effort)
+            Patience {
+                creeping: trial_steps(&protocol, params.effort),
+                any: protocol.trial_steps,
+            }
         } else {
-            u64::MAX
+            Patience::NONE
         };
         let outcome = fire.relax(
             &mut state,
