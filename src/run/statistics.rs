@@ -3,7 +3,8 @@
 //! and the closing report are these values.
 
 use super::quantity::{quantity, QuantityStatistics};
-use crate::contact::{ellipsoid_volume, equivalent_diameter};
+use super::plane_statistics::{AngleStatistics, PlaneStatistics};
+use crate::contact::Dimension;
 use crate::laws::{ks_distance, Moments, VonMisesCdf};
 use crate::packing::{sorted_turns, PackedGrain, Packing};
 use crate::scene::{aspect_ratio, tilt_angle, GrainCount, GrainSpec, Orientation, Phase, Scene};
@@ -16,19 +17,24 @@ pub struct Statistics {
     pub target_fraction: f64,
     /// Fraction the drawn grains fill at full size (scale 1).
     pub full_size_fraction: f64,
-    /// Fraction the packed grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`.
+    /// Fraction the packed grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`, or the area
+    /// fraction `Σ π a1 a2 / (Lx Ly)` in 2D.
     pub packing_fraction: f64,
     /// Whether and how far grains turned from their drawn orientations.
     pub rotation: TurnStatistics,
     /// Per phase, in scene order.
     pub phases: Vec<PhaseStatistics>,
+    /// In 2D, the arrangement of the centres: hexatic order and nearest neighbours.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plane: Option<PlaneStatistics>,
 }
 
 impl Statistics {
     /// The statistics of `packing`, a packing of `specs` drawn from `scene`.
     pub fn new(scene: &Scene, specs: &[GrainSpec], packing: &Packing) -> Self {
         let volume = scene.domain.volume();
-        let grain_volume = |g: &PackedGrain| ellipsoid_volume(g.semi_axes);
+        let dimension = scene.domain.dimension;
+        let grain_volume = |g: &PackedGrain| dimension.measure(g.semi_axes);
         let packed: f64 = packing.grains.iter().map(grain_volume).sum();
         let full: f64 = specs.iter().map(GrainSpec::volume).sum();
         let count_weight: f64 = scene
@@ -44,7 +50,8 @@ impl Statistics {
                 let grains: Vec<&PackedGrain> =
                     packing.grains.iter().filter(|g| g.phase == index).collect();
                 let phase_volume: f64 = grains.iter().map(|g| grain_volume(g)).sum();
-                let (diameter, aspect_ratio, tilt_angle_deg) = grain_statistics(phase, &grains);
+                let (diameter, aspect_ratio, tilt_angle_deg) =
+                    grain_statistics(phase, &grains, dimension);
                 PhaseStatistics {
                     name: phase.name.clone(),
                     grains: grains.len(),
@@ -62,6 +69,10 @@ impl Statistics {
                     shape: super::shape_statistics::shape(phase, &grains),
                     orientation_3d: super::shape_statistics::orientation(phase, &grains),
                     size_table: super::size_table::size_table(&phase.size, &grains),
+                    angle_deg: match dimension {
+                        Dimension::Two => AngleStatistics::of(&grains),
+                        Dimension::Three => None,
+                    },
                 }
             })
             .collect();
@@ -81,6 +92,11 @@ impl Statistics {
             packing_fraction: packed / volume,
             rotation,
             phases,
+            // The octree takes the box the loop packed in: it cannot fail here.
+            plane: match dimension {
+                Dimension::Two => PlaneStatistics::of(&packing.grains, &scene.domain).ok(),
+                Dimension::Three => None,
+            },
         }
     }
 }
@@ -120,7 +136,8 @@ pub struct PhaseStatistics {
     pub count_share: Share,
     /// Share of the grain volume: the scene's share against the packed volumes.
     pub volume_share: Share,
-    /// Equivalent-sphere diameter `2 (a1 a2 a3)^{1/3}` of the packed grains.
+    /// Equivalent-sphere diameter `2 (a1 a2 a3)^{1/3}` of the packed grains (in 2D,
+    /// the equivalent-circle diameter `2 √(a1 a2)`).
     pub diameter: QuantityStatistics,
     /// Aspect ratio `a1/a2` of the packed grains.
     pub aspect_ratio: QuantityStatistics,
@@ -138,6 +155,9 @@ pub struct PhaseStatistics {
     /// by number or by volume as the table counts.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub size_table: Option<super::size_table::SizeTableStatistics>,
+    /// In 2D, the angles of the ellipses' first semi-axes from x.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_deg: Option<AngleStatistics>,
 }
 
 /// `a / b`, or 0 when `b` is 0 (no grains).
@@ -154,6 +174,7 @@ fn ratio(a: f64, b: f64) -> f64 {
 fn grain_statistics(
     phase: &Phase,
     grains: &[&PackedGrain],
+    dimension: Dimension,
 ) -> (
     QuantityStatistics,
     QuantityStatistics,
@@ -161,7 +182,7 @@ fn grain_statistics(
 ) {
     let diameters: Vec<f64> = grains
         .iter()
-        .map(|g| equivalent_diameter(g.semi_axes))
+        .map(|g| dimension.equivalent_diameter(g.semi_axes))
         .collect();
     let aspects: Vec<f64> = grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect();
     let tilt_angle_deg = match phase.orientation {

@@ -8,6 +8,9 @@
 //!   `shape_tensor` with a sphere glyph draws every grain; ParaView's sphere has
 //!   radius 0.5, so set its Scale Factor to 2 for true size.
 //!
+//! In a 2D scene, every ellipse is a polygon in the plane z = 0 in `grains.vtu`, and a
+//! flat grain (third semi-axis 0) at `(x, y, 0)` in `centers.vtp`.
+//!
 //! Both are VTK XML files (version 1.0, little-endian, `UInt64` headers) with every
 //! array zlib-compressed in raw appended data, as VTK itself writes them by default,
 //! which every VTK-based reader and meshio load. Values go through unrounded, but for
@@ -32,12 +35,13 @@
 //! write_grains_vtu(&mut vtu, &[grain], &domain, &VtkSpec::default(), None)?;
 //! assert!(String::from_utf8_lossy(&vtu).contains(r#"NumberOfCells="320""#));
 //! let mut vtp = Vec::new();
-//! write_centers_vtp(&mut vtp, &[grain], None)?;
+//! write_centers_vtp(&mut vtp, &[grain], None, domain.dimension)?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 mod centers;
 mod icosphere;
+mod polygons;
 mod surfaces;
 mod xml;
 
@@ -61,6 +65,18 @@ const TRIANGLE: u8 = 5;
 /// The columns of the rotation matrix of `q`: `r[k]` is the direction of semi-axis `k`.
 fn rotation(q: [f64; 4]) -> [[f64; 3]; 3] {
     [0, 1, 2].map(|k| rotation_column(q, k))
+}
+
+/// A 2D grain (the ellipsoid an ellipse is embedded as) as the ellipse itself, a 3D
+/// grain flat in the plane z = 0: centre `(x, y, 0)`, semi-axes `(a1, a2, 0)`.
+fn flat_ellipse(grain: &PackedGrain) -> PackedGrain {
+    let [x, y, _] = grain.centre;
+    let [a1, a2, _] = grain.semi_axes;
+    PackedGrain {
+        centre: [x, y, 0.0],
+        semi_axes: [a1, a2, 0.0],
+        ..*grain
+    }
 }
 
 /// A grain's id as VTK's `Int32`.

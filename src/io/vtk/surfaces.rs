@@ -1,9 +1,10 @@
 //! `grains.vtu`: every grain's surface as triangles, with its figures as cell data.
 
 use super::icosphere::Icosphere;
+use super::polygons::write_ellipses_vtu;
 use super::xml::{write_piece, Array, Piece, Scalar, Section};
 use super::{grain_id, phase_index, rotation, TRIANGLE};
-use crate::contact::{ellipsoid_volume, equivalent_diameter};
+use crate::contact::{ellipsoid_volume, equivalent_diameter, Dimension};
 use crate::packing::PackedGrain;
 use crate::scene::{aspect_ratio, quaternion_to_euler};
 use crate::scene::{Boundary, Domain, VtkSpec};
@@ -22,13 +23,17 @@ pub fn periodic_shifts(grain: &PackedGrain, domain: &Domain) -> Vec<[f64; 3]> {
     }
     let r = rotation(grain.quaternion);
     let mut per_axis: [Vec<f64>; 3] = Default::default();
+    let axes = domain.sides().len();
     for (i, shifts) in per_axis.iter_mut().enumerate() {
+        shifts.push(0.0);
+        if i >= axes {
+            continue;
+        }
         let extent = (0..3)
             .map(|k| (grain.semi_axes[k] * r[k][i]).powi(2))
             .sum::<f64>()
             .sqrt();
         let (c, l) = (grain.centre[i], domain.size[i]);
-        shifts.push(0.0);
         if c - extent < 0.0 {
             shifts.push(l);
         } else if c + extent > l {
@@ -107,7 +112,7 @@ fn per_surface<'a, const N: usize>(
 }
 
 /// The little-endian bytes of several `f64`s, one after another.
-fn f64s<const N: usize, const B: usize>(values: [f64; N]) -> [u8; B] {
+pub(super) fn f64s<const N: usize, const B: usize>(values: [f64; N]) -> [u8; B] {
     let mut out = [0; B];
     for (chunk, v) in out.chunks_exact_mut(8).zip(values) {
         chunk.copy_from_slice(&v.to_le_bytes());
@@ -130,6 +135,8 @@ fn f64s<const N: usize, const B: usize>(values: [f64; N]) -> [u8; B] {
 ///
 /// A grain's values repeat over its triangles, which zlib stores for next to nothing;
 /// the surfaces are made one at a time, so memory does not grow with the file.
+///
+/// In a 2D scene each ellipse is a polygon instead ([`write_ellipses_vtu`]).
 pub fn write_grains_vtu(
     out: &mut dyn Write,
     grains: &[PackedGrain],
@@ -137,6 +144,9 @@ pub fn write_grains_vtu(
     spec: &VtkSpec,
     crystals: Option<&[[f64; 4]]>,
 ) -> io::Result<()> {
+    if domain.dimension == Dimension::Two {
+        return write_ellipses_vtu(out, grains, domain, spec, crystals);
+    }
     let sphere = Icosphere::new(spec.resolution);
     let (per_grain, points) = (sphere.triangles.len(), sphere.points.len());
     let mut surfaces = Vec::with_capacity(grains.len());
