@@ -146,7 +146,10 @@ impl PlaneStatistics {
                 radius: NEIGHBOUR_REACH * radius(g),
             })
             .collect();
-        let tree = Octree::build(&spheres, domain.box_shape()?, Params::default())?;
+        let shape = domain.box_shape()?;
+        // The octree's shifts refer to the centres wrapped into the box.
+        let centres: Vec<[f64; 3]> = grains.iter().map(|g| shape.wrap(g.centre)).collect();
+        let tree = Octree::build(&spheres, shape, Params::default())?;
         let mut pairs = Vec::new();
         tree.pairs(&mut pairs);
         // The slab's z images and a grain's own images are not neighbours in the plane.
@@ -162,8 +165,7 @@ impl PlaneStatistics {
         let mut gap = vec![f64::INFINITY; n];
         for p in &pairs {
             let (i, j) = (p.i as usize, p.j as usize);
-            let (a, b) = (&grains[i], &grains[j]);
-            let r = [0, 1, 2].map(|k| b.centre[k] + p.shift[k] - a.centre[k]);
+            let r = [0, 1, 2].map(|k| centres[j][k] + p.shift[k] - centres[i][k]);
             let distance = r[0].hypot(r[1]);
             let (sin, cos) = (6.0 * r[1].atan2(r[0])).sin_cos();
             let mu = pair_mu(forms[i].as_ref(), forms[j].as_ref(), r);
@@ -201,5 +203,113 @@ fn pair_mu(a: Option<&Sym3>, b: Option<&Sym3>, r: [f64; 3]) -> f64 {
     match (a, b) {
         (Some(qa), Some(qb)) => contact_function(&r, qa, qb).map_or(f64::NAN, |c| c.mu2.sqrt()),
         _ => f64::NAN,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::{ellipse_quaternion, ellipse_semi_axes};
+    use crate::scene::Boundary;
+
+    /// Sums of a few dozen terms of size 1 through atan2 and sin_cos of rounded
+    /// coordinates: a few hundred ε.
+    const TOL: f64 = 1e-12;
+
+    fn disc(id: usize, x: f64, y: f64, r: f64, domain: &Domain) -> PackedGrain {
+        PackedGrain {
+            id: id as u32,
+            phase: 0,
+            centre: [x, y, domain.plane_z()],
+            semi_axes: ellipse_semi_axes(r, r),
+            quaternion: ellipse_quaternion(0.0),
+        }
+    }
+
+    /// Discs of radius `r` on a lattice of spacing 1 with rows `h` apart, every other
+    /// row shifted by `offset`, in a periodic box of `m` by `k` sites.
+    fn lattice(m: usize, k: usize, h: f64, offset: f64, r: f64) -> (Vec<PackedGrain>, Domain) {
+        let domain = Domain::plane([m as f64, k as f64 * h], Boundary::Periodic);
+        let grains = (0..m * k)
+            .map(|n| {
+                let (i, j) = (n % m, n / m);
+                let x = i as f64 + 0.5 + offset * (j % 2) as f64;
+                disc(n, x, (j as f64 + 0.5) * h, r, &domain)
+            })
+            .collect();
+        (grains, domain)
+    }
+
+    #[test]
+    fn a_hexagonal_crystal_has_full_hexatic_order_and_equal_distances() {
+        let (grains, domain) = lattice(8, 10, 0.75f64.sqrt(), 0.5, 0.45);
+        let s = PlaneStatistics::of(&grains, &domain).unwrap();
+        assert_eq!(s.isolated_grains, 0);
+        assert_eq!(s.mean_neighbours, 6.0);
+        assert!((s.psi6_global - 1.0).abs() < TOL, "{s:?}");
+        assert!((s.psi6_local - 1.0).abs() < TOL, "{s:?}");
+        let d = s.nearest_centre_distance.unwrap();
+        assert!((d.min - 1.0).abs() < TOL && (d.max - 1.0).abs() < TOL, "{d:?}");
+        // Discs 1 apart with radii 0.45 grow by 1/0.9 to touch.
+        let gap = s.nearest_gap.unwrap();
+        assert!((gap.median - (1.0 / 0.9 - 1.0)).abs() < TOL, "{gap:?}");
+    }
+
+    #[test]
+    fn a_square_lattice_has_no_hexatic_order() {
+        let (grains, domain) = lattice(8, 8, 1.0, 0.0, 0.45);
+        let s = PlaneStatistics::of(&grains, &domain).unwrap();
+        // Four neighbours at 0°, 90°, 180°, 270°: e^{6iφ} = ±1 cancel.
+        assert_eq!(s.mean_neighbours, 4.0);
+        assert!(s.psi6_local < TOL && s.psi6_global < TOL, "{s:?}");
+    }
+
+    #[test]
+    fn a_walled_box_does_not_count_neighbours_across_its_faces() {
+        let domain = Domain::plane([10.0, 10.0], Boundary::Reflecting);
+        let grains = [disc(0, 0.5, 5.0, 0.45, &domain), disc(1, 9.5, 5.0, 0.45, &domain)];
+        let s = PlaneStatistics::of(&grains, &domain).unwrap();
+        assert_eq!(s.isolated_grains, 2);
+        assert!(s.nearest_centre_distance.is_none());
+        let periodic = Domain::plane([10.0, 10.0], Boundary::Periodic);
+        let s = PlaneStatistics::of(&grains, &periodic).unwrap();
+        assert_eq!(s.isolated_grains, 0);
+        assert!((s.nearest_centre_distance.unwrap().max - 1.0).abs() < TOL);
+    }
+
+    fn at_angles(degrees: &[f64]) -> AngleStatistics {
+        let domain = Domain::plane([10.0, 10.0], Boundary::Periodic);
+        let grains: Vec<PackedGrain> = degrees
+            .iter()
+            .map(|&t| PackedGrain {
+                quaternion: ellipse_quaternion(t.to_radians()),
+                ..disc(0, 5.0, 5.0, 1.0, &domain)
+            })
+            .collect();
+        AngleStatistics::of(&grains.iter().collect::<Vec<_>>()).unwrap()
+    }
+
+    #[test]
+    fn angle_statistics_treat_angles_as_axes() {
+        let same = at_angles(&[30.0; 5]);
+        assert!((same.order - 1.0).abs() < TOL);
+        assert!((same.mean_deg.unwrap() - 30.0).abs() < 1e-10);
+        // √(−2 ln R) for R = 1 − δ is √(2δ): rounding of 1e-16 gives 1e-8 rad.
+        assert!(same.spread_deg.unwrap() < 1e-6);
+        // 89° and −89° are 2° apart as axes: their mean is 90°, not 0°.
+        let across = at_angles(&[89.0, -89.0]);
+        assert!((across.mean_deg.unwrap() - 90.0).abs() < 1e-10, "{across:?}");
+        assert!((across.order - 2f64.to_radians().cos()).abs() < TOL);
+        // Axes 0°, 60°, 120° are evenly spread: no mean direction.
+        let even = at_angles(&[0.0, 60.0, 120.0]);
+        assert!(even.order < TOL, "{even:?}");
+    }
+
+    #[test]
+    fn spread_interpolates_between_ranks() {
+        let s = Spread::of(vec![4.0, 0.0, 1.0, 2.0, 3.0]).unwrap();
+        assert_eq!((s.min, s.median, s.max, s.mean), (0.0, 2.0, 4.0, 2.0));
+        assert!((s.p10 - 0.4).abs() < TOL && (s.p90 - 3.6).abs() < TOL);
+        assert!(Spread::of(Vec::new()).is_none());
     }
 }
