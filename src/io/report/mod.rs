@@ -38,7 +38,7 @@ use crate::io::decks::{
     write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
     MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
 };
-use crate::io::plots::render_pole_figures_png;
+use crate::io::plots::{render_packing_png, render_pole_figures_png};
 use crate::io::texture::measure_textures;
 use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
 use crate::packing::PackedGrain;
@@ -54,6 +54,9 @@ pub const GRAINS_CSV: &str = "grains.csv";
 /// `statistics_png` when a phase has a texture other than the default (random) or
 /// `damask` or `abaqus` is on.
 pub const POLE_FIGURES_PNG: &str = "pole_figures.png";
+
+/// File name of the picture of a 2D packing (`packing_png`).
+pub const PACKING_PNG: &str = "packing.png";
 
 /// File name of the summary.
 pub const SUMMARY_JSON: &str = "summary.json";
@@ -183,8 +186,8 @@ pub struct Written {
 
 /// Creates `scene.output.dir` if needed and writes the files `scene.output` enables
 /// for `result`, each to a temporary name renamed when complete, in this order:
-/// [`GRAINS_CSV`], [`GRAINS_VTU`], [`CENTERS_VTP`], the outputs of
-/// [`write_derived`], and [`SUMMARY_JSON`] last, so that a summary means the other
+/// [`GRAINS_CSV`], [`GRAINS_VTU`], [`CENTERS_VTP`], [`PACKING_PNG`] (2D), the
+/// outputs of [`write_derived`], and [`SUMMARY_JSON`] last, so that a summary means the other
 /// files are complete.
 pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, ReportError> {
     let started = std::time::Instant::now();
@@ -210,6 +213,11 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     if output.centers {
         files.write(CENTERS_VTP, |w| {
             write_centers_vtp(w, grains, Some(&crystals), domain.dimension)
+        })?;
+    }
+    if output.packing_png && domain.dimension == Dimension::Two {
+        files.write(PACKING_PNG, |w| {
+            render_packing_png(w, &scene.phases, grains, domain).map_err(io::Error::other)
         })?;
     }
     // Where it helps: a texture was asked for, or orientations go to a solver.
