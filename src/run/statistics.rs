@@ -17,8 +17,8 @@ pub struct Statistics {
     pub target_fraction: f64,
     /// Fraction the drawn grains fill at full size (scale 1).
     pub full_size_fraction: f64,
-    /// Fraction the packed grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`, or the area
-    /// fraction `Σ π a1 a2 / (Lx Ly)` in 2D.
+    /// Fraction the packed grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`, or the
+    /// area fraction `Σ π a1 a2 / (Lx Ly)` in 2D.
     pub packing_fraction: f64,
     /// Whether and how far grains turned from their drawn orientations.
     pub rotation: TurnStatistics,
@@ -51,7 +51,7 @@ impl Statistics {
                     packing.grains.iter().filter(|g| g.phase == index).collect();
                 let phase_volume: f64 = grains.iter().map(|g| grain_volume(g)).sum();
                 let (diameter, aspect_ratio, tilt_angle_deg) =
-                    grain_statistics(phase, &grains, dimension);
+                    grain_statistics(phase, dimension, &grains);
                 PhaseStatistics {
                     name: phase.name.clone(),
                     grains: grains.len(),
@@ -68,7 +68,7 @@ impl Statistics {
                     tilt_angle_deg,
                     shape: super::shape_statistics::shape(phase, &grains),
                     orientation_3d: super::shape_statistics::orientation(phase, &grains),
-                    size_table: super::size_table::size_table(&phase.size, &grains),
+                    size_table: super::size_table::size_table(&phase.size, dimension, &grains),
                     angle_deg: match dimension {
                         Dimension::Two => AngleStatistics::of(&grains),
                         Dimension::Three => None,
@@ -173,8 +173,8 @@ fn ratio(a: f64, b: f64) -> f64 {
 /// packed grains.
 fn grain_statistics(
     phase: &Phase,
-    grains: &[&PackedGrain],
     dimension: Dimension,
+    grains: &[&PackedGrain],
 ) -> (
     QuantityStatistics,
     QuantityStatistics,

@@ -1,13 +1,14 @@
 //! `[output]` → [`OutputSpec`]: defaults filled in, the RVE's cells resolved against
 //! the box, and every key that cannot take effect rejected rather than ignored.
 
+use super::not_in_2d;
+use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawFill, RawOutput};
 use crate::scene::{
     proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
     MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION, MIN_VTK_RESOLUTION,
 };
-use crate::contact::Dimension;
 use crate::scene::{Boundary, Domain};
 use std::path::PathBuf;
 use toml::Spanned;
@@ -150,7 +151,7 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
             Some(("output.rve_voxel_size", h.span())),
         ),
         // At most DEFAULT_RVE_CELLS³, far below the limit.
-        (None, None) => (proportional_cells(DEFAULT_RVE_CELLS, domain.size), None),
+        (None, None) => (proportional(DEFAULT_RVE_CELLS, domain), None),
     };
     let count: u64 = cells.iter().map(|&n| n as u64).product();
     if let Some((key, at)) = from.filter(|_| count > MAX_RVE_CELLS) {
@@ -167,15 +168,40 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
         None | Some(RawFill::Grains) => RveFill::Grains,
         Some(RawFill::Matrix) => RveFill::Matrix,
     };
+    // A 2D RVE is one cell thick: it is its own section.
+    let sections_png = match (&raw.sections_png, domain.dimension) {
+        (Some(v), Dimension::Two) if *v.get_ref() => {
+            return Err(not_in_2d(
+                src,
+                "output.sections_png",
+                v.span(),
+                "the RVE of a 2D scene is one cell thick, its own section",
+            ))
+        }
+        (_, Dimension::Two) => false,
+        (v, Dimension::Three) => v.as_ref().is_none_or(|v| *v.get_ref()),
+    };
     Ok(Some(RveSpec {
         cells,
         fill,
-        sections_png: raw.sections_png.as_ref().is_none_or(|v| *v.get_ref()),
+        sections_png,
     }))
 }
 
+/// [`proportional_cells`] along the box's edges; a 2D scene's RVE is one cell thick.
+fn proportional(longest: usize, domain: &Domain) -> [usize; 3] {
+    match domain.dimension {
+        Dimension::Three => proportional_cells(longest, domain.size),
+        Dimension::Two => {
+            let [x, y] = [domain.size[0], domain.size[1]];
+            let [nx, ny, _] = proportional_cells(longest, [x, y, x.max(y)]);
+            [nx, ny, 1]
+        }
+    }
+}
+
 /// `rve_resolution = N` (N cells along the longest edge, proportionally many along
-/// the others) or `[nx, ny, nz]`.
+/// the others) or `[nx, ny, nz]`; `[nx, ny]` in a 2D scene (one cell along z).
 fn resolution(
     src: &Source,
     raw: &Spanned<toml::Value>,
@@ -187,16 +213,32 @@ fn resolution(
         toml::Value::Integer(n) if (1..=limit).contains(n) => Some(*n as usize),
         _ => None,
     };
-    let shape = format!(
-        "must be an integer or an array of three integers, each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
-    );
+    let (edges, shape) = match domain.dimension {
+        Dimension::Three => (
+            3,
+            format!(
+                "must be an integer or an array of three integers, each in [1, \
+                 {MAX_RVE_CELLS_PER_EDGE}]"
+            ),
+        ),
+        Dimension::Two => (
+            2,
+            format!(
+                "must be an integer or an array of two integers [nx, ny] (a 2D scene's RVE is \
+                 one cell thick), each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
+            ),
+        ),
+    };
     match raw.get_ref() {
-        toml::Value::Array(items) if items.len() == 3 => {
-            let cells: Vec<usize> = items.iter().filter_map(edge).collect();
+        toml::Value::Array(items) if items.len() == edges => {
+            let mut cells: Vec<usize> = items.iter().filter_map(edge).collect();
+            if edges == 2 && cells.len() == 2 {
+                cells.push(1);
+            }
             <[usize; 3]>::try_from(cells).map_err(|_| src.invalid_at(key, raw, shape))
         }
         value => match edge(value) {
-            Some(n) => Ok(proportional_cells(n, domain.size)),
+            Some(n) => Ok(proportional(n, domain)),
             None => Err(src.invalid_at(key, raw, shape)),
         },
     }
@@ -209,8 +251,9 @@ fn voxel_size(src: &Source, raw: &Spanned<f64>, domain: &Domain) -> Result<[usiz
     if !(h.is_finite() && h > 0.0) {
         return Err(src.invalid_at(key, raw, "must be positive and finite"));
     }
-    let mut cells = [0; 3];
-    for (i, (&l, n)) in domain.size.iter().zip(&mut cells).enumerate() {
+    // One cell along z in 2D.
+    let mut cells = [1; 3];
+    for (i, (&l, n)) in domain.sides().iter().zip(&mut cells).enumerate() {
         let count = (l / h).round().max(1.0);
         if count > MAX_RVE_CELLS_PER_EDGE as f64 {
             let axis = ["x", "y", "z"][i];
