@@ -62,12 +62,21 @@ fn plane_run(dir: &Path) -> (Scene, RunResult, Vec<f64>) {
         // Half a cell towards the origin, wrapped: the first row and column cross.
         let wrap = |x: f64, l: f64| if x < 0.0 { x + l } else { x };
         let centre = [0, 1].map(|k| {
-            wrap(site[k] - 0.5 * SPACING + rng.random_range(-JITTER..JITTER), sides[k])
+            wrap(
+                site[k] - 0.5 * SPACING + rng.random_range(-JITTER..JITTER),
+                sides[k],
+            )
         });
         let theta = rng.random_range(-PI..PI);
         let spec = GrainSpec::ellipse(n % 2, DIAMETER, ASPECT, theta);
         let at = [centre[0], centre[1], scene.domain.plane_z()];
-        grains.push(PackedGrain::of_spec(n as u32, &spec, 1.0, at, spec.quaternion));
+        grains.push(PackedGrain::of_spec(
+            n as u32,
+            &spec,
+            1.0,
+            at,
+            spec.quaternion,
+        ));
         specs.push(spec);
         angles.push(theta);
     }
@@ -135,7 +144,17 @@ fn a_2d_run_writes_the_plane_files() {
     );
     for ((line, g), theta) in lines.zip(grains).zip(&angles) {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
-        assert_eq!(v[..6], [f64::from(g.id), g.phase as f64, g.centre[0], g.centre[1], g.semi_axes[0], g.semi_axes[1]]);
+        assert_eq!(
+            v[..6],
+            [
+                f64::from(g.id),
+                g.phase as f64,
+                g.centre[0],
+                g.centre[1],
+                g.semi_axes[0],
+                g.semi_axes[1]
+            ]
+        );
         // Half-angle sin_cos and atan2: a few ε of 180°.
         assert!((v[6] - axis_degrees(*theta)).abs() < 1e-12, "{line}");
     }
@@ -145,7 +164,10 @@ fn a_2d_run_writes_the_plane_files() {
     let types = vtu.array("types", "Cells", "UInt8", 1);
     let cells = types.len();
     assert!(types.iter().all(|&t| t == 7.0), "VTK_POLYGON");
-    assert!(cells > grains.len(), "copies of the ellipses across the edges");
+    assert!(
+        cells > grains.len(),
+        "copies of the ellipses across the edges"
+    );
     let m = VtkSpec::default().polygon_vertices();
     let offsets = vtu.array("offsets", "Cells", "Int32", 1);
     assert!((0..cells).all(|k| offsets[k] == ((k + 1) * m) as f64));
@@ -157,11 +179,16 @@ fn a_2d_run_writes_the_plane_files() {
     let inscribed = m as f64 / (2.0 * PI) * (2.0 * PI / m as f64).sin();
     for k in 0..cells {
         let g = &grains[ids[k] as usize];
-        let (c, s) = (g.quaternion[0] * g.quaternion[0] - g.quaternion[3] * g.quaternion[3], 2.0 * g.quaternion[0] * g.quaternion[3]);
-        let vertices: Vec<[f64; 3]> = (0..m).map(|v| {
-            let p = &points[3 * (k * m + v)..3 * (k * m + v) + 3];
-            [p[0], p[1], p[2]]
-        }).collect();
+        let (c, s) = (
+            g.quaternion[0] * g.quaternion[0] - g.quaternion[3] * g.quaternion[3],
+            2.0 * g.quaternion[0] * g.quaternion[3],
+        );
+        let vertices: Vec<[f64; 3]> = (0..m)
+            .map(|v| {
+                let p = &points[3 * (k * m + v)..3 * (k * m + v) + 3];
+                [p[0], p[1], p[2]]
+            })
+            .collect();
         let mean = [0, 1].map(|i| vertices.iter().map(|p| p[i]).sum::<f64>() / m as f64);
         let shift = [0, 1].map(|i| {
             let l = scene.domain.size[i];
@@ -182,7 +209,11 @@ fn a_2d_run_writes_the_plane_files() {
         let exact = PI * g.semi_axes[0] * g.semi_axes[1];
         assert!((area[k] / exact - 1.0).abs() < 1e-15);
         // Counter-clockwise, enclosing the inscribed share of the ellipse.
-        assert!((signed / exact - inscribed).abs() < 1e-4, "cell {k}: {}", signed / exact);
+        assert!(
+            (signed / exact - inscribed).abs() < 1e-4,
+            "cell {k}: {}",
+            signed / exact
+        );
     }
 
     // centers.vtp: the flat ellipses at z = 0.
@@ -191,7 +222,10 @@ fn a_2d_run_writes_the_plane_files() {
     let axes = vtp.array("semi_axes", "PointData", "Float64", 3);
     for (i, g) in grains.iter().enumerate() {
         assert_eq!(centres[3 * i..3 * i + 3], [g.centre[0], g.centre[1], 0.0]);
-        assert_eq!(axes[3 * i..3 * i + 3], [g.semi_axes[0], g.semi_axes[1], 0.0]);
+        assert_eq!(
+            axes[3 * i..3 * i + 3],
+            [g.semi_axes[0], g.semi_axes[1], 0.0]
+        );
     }
 
     check_summary(&dir, &scene, grains);
@@ -204,11 +238,20 @@ fn check_summary(dir: &Path, scene: &Scene, grains: &[PackedGrain]) {
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     let [lx, ly, _] = scene.domain.size;
-    let areas: f64 = grains.iter().map(|g| PI * g.semi_axes[0] * g.semi_axes[1]).sum();
+    let areas: f64 = grains
+        .iter()
+        .map(|g| PI * g.semi_axes[0] * g.semi_axes[1])
+        .sum();
     let fraction = summary["packing_fraction"].as_f64().unwrap();
-    assert!((fraction / (areas / (lx * ly)) - 1.0).abs() < 1e-14, "{fraction}");
+    assert!(
+        (fraction / (areas / (lx * ly)) - 1.0).abs() < 1e-14,
+        "{fraction}"
+    );
     let diameter = &summary["phases"][1]["diameter"]["achieved"]["mean"];
-    assert!((diameter.as_f64().unwrap() / DIAMETER - 1.0).abs() < 1e-14, "{diameter}");
+    assert!(
+        (diameter.as_f64().unwrap() / DIAMETER - 1.0).abs() < 1e-14,
+        "{diameter}"
+    );
     let order = summary["phases"][1]["angle_deg"]["order"].as_f64().unwrap();
     assert!((0.0..=1.0).contains(&order));
     let plane = &summary["plane"];
@@ -222,7 +265,9 @@ fn check_summary(dir: &Path, scene: &Scene, grains: &[PackedGrain]) {
             grains
                 .iter()
                 .filter(|b| b.id != a.id)
-                .map(|b| image(b.centre[0] - a.centre[0], lx).hypot(image(b.centre[1] - a.centre[1], ly)))
+                .map(|b| {
+                    image(b.centre[0] - a.centre[0], lx).hypot(image(b.centre[1] - a.centre[1], ly))
+                })
                 .fold(f64::INFINITY, f64::min)
         })
         .collect();

@@ -92,7 +92,7 @@ impl PyPacking {
             &crystals,
             self.scene.domain.dimension,
         )
-            .map_err(|e| PyOSError::new_err(e.to_string()))?;
+        .map_err(|e| PyOSError::new_err(e.to_string()))?;
         let mut reader = csv::Reader::from_reader(text.as_slice());
         let header: Vec<String> = reader
             .headers()

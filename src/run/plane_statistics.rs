@@ -183,7 +183,9 @@ impl PlaneStatistics {
             .map(|&k| (psi[k].0 / count[k] as f64, psi[k].1 / count[k] as f64))
             .collect();
         let m = placed.len().max(1) as f64;
-        let (c, s) = local.iter().fold((0.0, 0.0), |(c, s), l| (c + l.0, s + l.1));
+        let (c, s) = local
+            .iter()
+            .fold((0.0, 0.0), |(c, s), l| (c + l.0, s + l.1));
         Ok(Self {
             neighbour_reach: NEIGHBOUR_REACH,
             mean_neighbours: count.iter().sum::<usize>() as f64 / n.max(1) as f64,
@@ -249,7 +251,10 @@ mod tests {
         assert!((s.psi6_global - 1.0).abs() < TOL, "{s:?}");
         assert!((s.psi6_local - 1.0).abs() < TOL, "{s:?}");
         let d = s.nearest_centre_distance.unwrap();
-        assert!((d.min - 1.0).abs() < TOL && (d.max - 1.0).abs() < TOL, "{d:?}");
+        assert!(
+            (d.min - 1.0).abs() < TOL && (d.max - 1.0).abs() < TOL,
+            "{d:?}"
+        );
         // Discs 1 apart with radii 0.45 grow by 1/0.9 to touch.
         let gap = s.nearest_gap.unwrap();
         assert!((gap.median - (1.0 / 0.9 - 1.0)).abs() < TOL, "{gap:?}");
@@ -267,7 +272,10 @@ mod tests {
     #[test]
     fn a_walled_box_does_not_count_neighbours_across_its_faces() {
         let domain = Domain::plane([10.0, 10.0], Boundary::Reflecting);
-        let grains = [disc(0, 0.5, 5.0, 0.45, &domain), disc(1, 9.5, 5.0, 0.45, &domain)];
+        let grains = [
+            disc(0, 0.5, 5.0, 0.45, &domain),
+            disc(1, 9.5, 5.0, 0.45, &domain),
+        ];
         let s = PlaneStatistics::of(&grains, &domain).unwrap();
         assert_eq!(s.isolated_grains, 2);
         assert!(s.nearest_centre_distance.is_none());
@@ -298,7 +306,10 @@ mod tests {
         assert!(same.spread_deg.unwrap() < 1e-6);
         // 89° and −89° are 2° apart as axes: their mean is 90°, not 0°.
         let across = at_angles(&[89.0, -89.0]);
-        assert!((across.mean_deg.unwrap() - 90.0).abs() < 1e-10, "{across:?}");
+        assert!(
+            (across.mean_deg.unwrap() - 90.0).abs() < 1e-10,
+            "{across:?}"
+        );
         assert!((across.order - 2f64.to_radians().cos()).abs() < TOL);
         // Axes 0°, 60°, 120° are evenly spread: no mean direction.
         let even = at_angles(&[0.0, 60.0, 120.0]);

@@ -2,8 +2,8 @@
 //! shares, sizes, shapes and tilt angles, and how far grains turned. `summary.json`
 //! and the closing report are these values.
 
-use super::quantity::{quantity, QuantityStatistics};
 use super::plane_statistics::{AngleStatistics, PlaneStatistics};
+use super::quantity::{quantity, QuantityStatistics};
 use crate::contact::Dimension;
 use crate::laws::{ks_distance, Moments, VonMisesCdf};
 use crate::packing::{sorted_turns, PackedGrain, Packing};

@@ -198,7 +198,11 @@ fn draw_legend<DB: DrawingBackend>(
             phase_colour(index).filled(),
         ))
         .map_err(failed("the legend"))?;
-        let label = format!("{} ({})", phase.name, grains.iter().filter(|g| g.phase == index).count());
+        let label = format!(
+            "{} ({})",
+            phase.name,
+            grains.iter().filter(|g| g.phase == index).count()
+        );
         area.draw_text(&label, &font(16), (x + 22, 52))
             .map_err(failed("the legend"))?;
         x += 40 + 9 * label.chars().count() as i32;

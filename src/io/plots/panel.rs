@@ -303,7 +303,12 @@ fn plane_angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Pane
                 mean: 0.0,
                 std: 180.0 / 12f64.sqrt(),
             }),
-            Target::Curve(vec![(-90.0, 0.0), (-90.0, 1.0 / 180.0), (90.0, 1.0 / 180.0), (90.0, 0.0)]),
+            Target::Curve(vec![
+                (-90.0, 0.0),
+                (-90.0, 1.0 / 180.0),
+                (90.0, 1.0 / 180.0),
+                (90.0, 0.0),
+            ]),
         ),
         Orientation::Aligned { axis } => (
             "target aligned",

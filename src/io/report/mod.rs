@@ -400,7 +400,12 @@ mod tests {
             Some("id,phase,x,y,a1,a2,angle,o0,o1,o2,o3,phi1,Phi,phi2")
         );
         for want in [0.3, 2.0 - std::f64::consts::PI] {
-            let row: Vec<f64> = lines.next().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+            let row: Vec<f64> = lines
+                .next()
+                .unwrap()
+                .split(',')
+                .map(|v| v.parse().unwrap())
+                .collect();
             assert_eq!(row[2..6], [1.5, 2.5, 2.0, 0.5]);
             // sin_cos, atan2 and the conversion to degrees: a few ε of 180°.
             assert!((row[6] - want.to_degrees()).abs() < 1e-12, "{}", row[6]);

@@ -95,10 +95,16 @@ pub(super) fn write_ellipses_vtu(
     };
     let mut arrays = vec![
         cell(o, "grain_id", Scalar::Int32, 1, move |s| {
-            grain_id(grain(s)).unwrap_or_default().to_le_bytes().to_vec()
+            grain_id(grain(s))
+                .unwrap_or_default()
+                .to_le_bytes()
+                .to_vec()
         }),
         cell(o, "phase", Scalar::Int32, 1, move |s| {
-            phase_index(grain(s)).unwrap_or_default().to_le_bytes().to_vec()
+            phase_index(grain(s))
+                .unwrap_or_default()
+                .to_le_bytes()
+                .to_vec()
         }),
         float("area", |g| Dimension::Two.measure(g.semi_axes)),
         float("equivalent_diameter", |g| {
@@ -106,13 +112,19 @@ pub(super) fn write_ellipses_vtu(
         }),
         float("aspect_ratio", |g| aspect_ratio(g.semi_axes)),
         float("angle", |g| ellipse_angle(g.quaternion).to_degrees()),
-        cell(o, "periodic_image", Scalar::UInt8, 1, |s| vec![u8::from(s.copy)]),
+        cell(o, "periodic_image", Scalar::UInt8, 1, |s| {
+            vec![u8::from(s.copy)]
+        }),
     ];
     if let Some(c) = crystals {
         let q = move |s: &Outline| c.get(s.grain).copied().unwrap_or([1.0, 0.0, 0.0, 0.0]);
-        arrays.push(cell(o, "crystal_quaternion", Scalar::Float64, 4, move |s| {
-            f64s::<4, 32>(q(s)).to_vec()
-        }));
+        arrays.push(cell(
+            o,
+            "crystal_quaternion",
+            Scalar::Float64,
+            4,
+            move |s| f64s::<4, 32>(q(s)).to_vec(),
+        ));
         arrays.push(cell(o, "euler_angles", Scalar::Float64, 3, move |s| {
             f64s::<3, 24>(quaternion_to_euler(q(s)).map(f64::to_degrees)).to_vec()
         }));
