@@ -47,11 +47,12 @@ mod xml;
 
 pub use centers::{quadratic_form, shape_tensor, write_centers_vtp};
 pub use icosphere::Icosphere;
-pub use surfaces::{periodic_shifts, write_grains_vtu};
+pub use surfaces::periodic_shifts;
 
-use crate::contact::rotation_column;
+use crate::contact::{rotation_column, Dimension};
 use crate::packing::PackedGrain;
-use std::io;
+use crate::scene::{Domain, VtkSpec};
+use std::io::{self, Write};
 
 /// File name of the grain surfaces.
 pub const GRAINS_VTU: &str = "grains.vtu";
@@ -65,6 +66,23 @@ const TRIANGLE: u8 = 5;
 /// The columns of the rotation matrix of `q`: `r[k]` is the direction of semi-axis `k`.
 fn rotation(q: [f64; 4]) -> [[f64; 3]; 3] {
     [0, 1, 2].map(|k| rotation_column(q, k))
+}
+
+/// Writes `grains.vtu`: each grain's surface as triangles
+/// ([`write_surfaces_vtu`](surfaces::write_surfaces_vtu), whose documentation gives the
+/// layout and arrays), or in a 2D scene each ellipse as a polygon at z = 0
+/// ([`write_ellipses_vtu`](polygons::write_ellipses_vtu)).
+pub fn write_grains_vtu(
+    out: &mut dyn Write,
+    grains: &[PackedGrain],
+    domain: &Domain,
+    spec: &VtkSpec,
+    crystals: Option<&[[f64; 4]]>,
+) -> io::Result<()> {
+    match domain.dimension {
+        Dimension::Two => polygons::write_ellipses_vtu(out, grains, domain, spec, crystals),
+        Dimension::Three => surfaces::write_surfaces_vtu(out, grains, domain, spec, crystals),
+    }
 }
 
 /// A 2D grain (the ellipsoid an ellipse is embedded as) as the ellipse itself, a 3D

@@ -1,10 +1,9 @@
 //! `grains.vtu`: every grain's surface as triangles, with its figures as cell data.
 
 use super::icosphere::Icosphere;
-use super::polygons::write_ellipses_vtu;
 use super::xml::{write_piece, Array, Piece, Scalar, Section};
 use super::{grain_id, phase_index, rotation, TRIANGLE};
-use crate::contact::{ellipsoid_volume, equivalent_diameter, Dimension};
+use crate::contact::{ellipsoid_volume, equivalent_diameter};
 use crate::packing::PackedGrain;
 use crate::scene::{aspect_ratio, quaternion_to_euler};
 use crate::scene::{Boundary, Domain, VtkSpec};
@@ -135,18 +134,13 @@ pub(super) fn f64s<const N: usize, const B: usize>(values: [f64; N]) -> [u8; B] 
 ///
 /// A grain's values repeat over its triangles, which zlib stores for next to nothing;
 /// the surfaces are made one at a time, so memory does not grow with the file.
-///
-/// In a 2D scene each ellipse is a polygon instead ([`write_ellipses_vtu`]).
-pub fn write_grains_vtu(
+pub(super) fn write_surfaces_vtu(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     domain: &Domain,
     spec: &VtkSpec,
     crystals: Option<&[[f64; 4]]>,
 ) -> io::Result<()> {
-    if domain.dimension == Dimension::Two {
-        return write_ellipses_vtu(out, grains, domain, spec, crystals);
-    }
     let sphere = Icosphere::new(spec.resolution);
     let (per_grain, points) = (sphere.triangles.len(), sphere.points.len());
     let mut surfaces = Vec::with_capacity(grains.len());
