@@ -5,7 +5,7 @@
 mod support;
 
 use grainpack::contact::{ellipse_angle, Dimension, PLANE_NORMAL};
-use grainpack::laws::{random_close_packing_of, VonMises, VonMisesCdf};
+use grainpack::laws::{random_close_packing_discs, VonMises, VonMisesCdf};
 use grainpack::run::Drawn;
 use grainpack::scene::{GrainCount, GrainSpec, Scene};
 use std::f64::consts::PI;
@@ -199,7 +199,7 @@ fn phases_share_the_area_and_the_estimate_is_of_discs() {
     );
     let estimate = Drawn::of(&s, &drawn);
     let diameters: Vec<f64> = drawn.iter().map(|g| g.diameter).collect();
-    let discs = random_close_packing_of(Dimension::Two, &diameters).unwrap();
+    let discs = random_close_packing_discs(&diameters).unwrap();
     // Equivalent-circle diameters recomputed from the semi-axes: a few ulps apart.
     assert!((estimate.reachable_fraction - discs / 1.05f64.powi(2)).abs() < 1e-9);
     assert!(!estimate.spheres);

@@ -1,7 +1,9 @@
 //! A structure-aware scene generator: a tiny valid scene, then edits chosen by the
 //! input bytes, each setting a documented key (`docs/config.md`) to a value at or past
 //! its limits (zero, negative, NaN, huge, empty tables, wrong types), removing one,
-//! adding a phase or a misspelt key. libFuzzer and proptest drive the same bytes.
+//! adding a phase or a misspelt key, or making the scene 2D (a box of two lengths, so
+//! that the 2D keys and the refusals of 3D-only ones are reached: [`FLAT`]).
+//! libFuzzer and proptest drive the same bytes.
 
 /// The input bytes, read one choice at a time (zeros once they run out).
 pub struct Choices<'a> {
@@ -70,6 +72,7 @@ const TABLES: [(&str, &[&str]); 11] = [
             "spin_reference",
             "spin_kappa",
             "spin_mean",
+            "angle",
         ],
     ),
     (
@@ -216,6 +219,43 @@ const OTHERS: [&str; 36] = [
     "1979-05-27T07:32:00Z",
 ];
 
+/// 2D scenes: the boxes of two lengths an edit sets, each with one of [`FLAT_SETS`].
+const FLAT: [&str; 3] = ["[20.0, 20.0]", "[24.0, 14.0]", "[9.0, 30.0]"];
+
+/// What a 2D edit sets beside the box (table, key, value): the 2D orientations, the
+/// 2D limit of the fraction (π/√12 = 0.90690) at and past it, and the 3D-only keys a
+/// 2D scene refuses (mixed 2D/3D scenes).
+const FLAT_SETS: [&[(&str, &str, &str)]; 10] = [
+    &[],
+    &[
+        ("phase.orientation", "kind", "\"vonmises\""),
+        ("phase.orientation", "kappa", "2.0"),
+        ("phase.orientation", "mean", "30.0"),
+    ],
+    &[
+        ("phase.orientation", "kind", "\"aligned\""),
+        ("phase.orientation", "angle", "-45.0"),
+    ],
+    &[
+        ("phase.aspect_ratio", "distribution", "\"uniform\""),
+        ("phase.aspect_ratio", "min", "1.0"),
+        ("phase.aspect_ratio", "max", "2.5"),
+    ],
+    &[("", "grains", ""), ("", "target_fraction", "0.90690")],
+    &[("", "grains", ""), ("", "target_fraction", "0.9070")],
+    &[("phase.orientation", "kind", "\"fisher\"")],
+    &[
+        ("phase.b_over_a", "distribution", "\"constant\""),
+        ("phase.b_over_a", "value", "0.5"),
+    ],
+    &[("packing", "rotation", "\"axis\"")],
+    &[
+        ("phase.orientation", "kind", "\"tilt\""),
+        ("phase.orientation", "axis", "\"x\""),
+        ("phase.orientation", "kappa", "1.0"),
+    ],
+];
+
 /// Words some keys take, besides the pools above.
 const WORDS: [&str; 20] = [
     "\"periodic\"",
@@ -270,7 +310,7 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
         if choices.exhausted() {
             break;
         }
-        match choices.byte() % 8 {
+        match choices.byte() % 9 {
             0..=3 => {
                 let (table, keys) = choices.pick(&TABLES);
                 let table = match table {
@@ -295,6 +335,20 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
                     .collect();
                 entries.extend(first.into_iter().map(|e| Entry { phase: phases, ..e }));
                 phases += 1;
+            }
+            8 => {
+                // 2D: a box of two lengths, and one of the 2D edits.
+                let size = choices.pick(&FLAT);
+                entries.retain(|e| !(e.table == "box" && e.key == "size"));
+                entries.push(entry("box", 0, "size", size));
+                let phase = usize::from(choices.byte()) % phases;
+                for &(table, key, value) in choices.pick(&FLAT_SETS) {
+                    entries.retain(|e| !(e.table == table && e.key == key && e.phase == phase));
+                    // An empty value removes the key.
+                    if !value.is_empty() {
+                        entries.push(entry(table, phase, key, value));
+                    }
+                }
             }
             _ => {
                 // A misspelt or misplaced key, or a key given twice.
