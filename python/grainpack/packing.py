@@ -104,10 +104,10 @@ class Packing:
         return json.loads(self._native._summary_json())
 
     @property
-    def box_size(self) -> tuple[float, float, float]:
-        """Box edges ``(Lx, Ly, Lz)`` (in 2D, ``Lz`` is that of the slab the ellipses are
-        packed in, ``max(Lx, Ly)``)."""
-        return self._native.box_size
+    def box_size(self) -> tuple[float, ...]:
+        """Box edges ``(Lx, Ly, Lz)``, or the rectangle's ``(Lx, Ly)`` in 2D (as
+        ``Scene.box_size``)."""
+        return tuple(self._native.box_size[: self.dimension])
 
     @property
     def seed(self) -> int:

@@ -55,7 +55,7 @@ def contact_mu2(r, a, b):
 def test_a_2d_scene_packs_ellipses_as_2d_arrays(plane):
     p = plane
     n = len(p)
-    assert p.dimension == 2
+    assert p.dimension == 2 and p.box_size == BOX
     assert p.centres.shape == (n, 2) and p.semi_axes.shape == (n, 2) and p.angles.shape == (n,)
     assert np.all((p.centres >= 0) & (p.centres < np.array(BOX)))
     np.testing.assert_allclose(p.semi_axes[:, 0] / p.semi_axes[:, 1], 1.5, rtol=1e-14)
