@@ -45,7 +45,7 @@ pub fn quadratic_form(grain: &PackedGrain) -> [f64; 9] {
 /// scalar first) and `euler_angles` (Bunge, degrees).
 ///
 /// In 2D (`dimension`), each ellipse lies in the plane z = 0 with its third semi-axis 0
-/// ([`flat_ellipse`]): the points are `(x, y, 0)`, `semi_axes` `(a1, a2, 0)`, and the
+/// (the embedded grain flattened): the points are `(x, y, 0)`, `semi_axes` `(a1, a2, 0)`, and the
 /// tensors have a zero z row and column (a Tensor Glyph draws the flat ellipse).
 pub fn write_centers_vtp(
     out: &mut dyn Write,

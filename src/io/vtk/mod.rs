@@ -68,10 +68,29 @@ fn rotation(q: [f64; 4]) -> [[f64; 3]; 3] {
     [0, 1, 2].map(|k| rotation_column(q, k))
 }
 
-/// Writes `grains.vtu`: each grain's surface as triangles
-/// ([`write_surfaces_vtu`](surfaces::write_surfaces_vtu), whose documentation gives the
-/// layout and arrays), or in a 2D scene each ellipse as a polygon at z = 0
-/// ([`write_ellipses_vtu`](polygons::write_ellipses_vtu)).
+/// Writes `grains.vtu` (VTK XML UnstructuredGrid, arrays zlib-compressed in raw
+/// appended data, `io/vtk/xml.rs`, points `Float32`): each grain's surface, and in a
+/// periodic box with `spec.periodic_images` its [`periodic_shifts`] copies, as
+/// `20·4^resolution` triangles each. Cell data, per triangle: `grain_id` and `phase`
+/// (the CSV's, `Int32`), `volume` `4π/3·a1·a2·a3` and `equivalent_diameter`
+/// `2·(a1·a2·a3)^{1/3}` of the exact ellipsoid, `aspect_ratio` `a1/a2` (first
+/// semi-axis over second: both as in the summary, [`crate::run::Statistics`]),
+/// `b_over_a` and `c_over_a` (the semi-axes sorted `a ≥ b ≥ c`, DREAM.3D's ratios,
+/// which describe triaxial grains), and `periodic_image` (`UInt8`: 0 for the grain, 1
+/// for a copy); with `crystals` (`crystals[i]` the crystal orientation of
+/// `grains[i]`), also `crystal_quaternion` (4 components, scalar first) and
+/// `euler_angles` (Bunge, degrees). Topology is `Int32` (`Int64` past 2³¹ − 1).
+///
+/// A grain's values repeat over its triangles, which zlib stores for next to nothing;
+/// the surfaces are made one at a time, so memory does not grow with the file.
+///
+/// In a 2D scene (`domain.dimension`), each ellipse, and with `spec.periodic_images`
+/// each copy across an edge it crosses, is one `VTK_POLYGON` of
+/// [`VtkSpec::polygon_vertices`] points on the ellipse, counter-clockwise, in the plane
+/// z = 0. Its cell data, one value per polygon: `grain_id`, `phase`, `area` `π a1 a2`,
+/// `equivalent_diameter` `2√(a1 a2)` (of the circle of the same area), `aspect_ratio`,
+/// `angle` (degrees, of the first semi-axis from x, in `(−90, 90]`), `periodic_image`,
+/// and with `crystals` `crystal_quaternion` and `euler_angles`.
 pub fn write_grains_vtu(
     out: &mut dyn Write,
     grains: &[PackedGrain],

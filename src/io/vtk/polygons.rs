@@ -50,15 +50,7 @@ fn cell<'a>(
     })
 }
 
-/// Writes `grains.vtu` for ellipses (VTK XML UnstructuredGrid, as
-/// [`write_grains_vtu`](super::write_grains_vtu)): each grain, and in a periodic box
-/// with `spec.periodic_images` its copies across the edges it crosses, as one
-/// `VTK_POLYGON` of [`VtkSpec::polygon_vertices`] points on the ellipse, in the plane
-/// z = 0. Cell data, one value per polygon: `grain_id` and `phase` (`Int32`), `area`
-/// `π a1 a2`, `equivalent_diameter` `2√(a1 a2)` (of the circle of the same area),
-/// `aspect_ratio` `a1/a2`, `angle` (degrees, of the first semi-axis from x, in
-/// `(−90, 90]`), `periodic_image` (`UInt8`), and with `crystals` `crystal_quaternion`
-/// and `euler_angles` as in 3D.
+/// Writes `grains.vtu` of a 2D scene: see [`write_grains_vtu`](super::write_grains_vtu).
 pub(super) fn write_ellipses_vtu(
     out: &mut dyn Write,
     grains: &[PackedGrain],
