@@ -264,3 +264,15 @@ fn an_unknown_fill_names_the_choices() {
         "scene.toml:11:12: output.rve_fill: unknown variant `void`, expected `grains` or `matrix`",
     );
 }
+
+#[test]
+fn packing_png_applies_only_to_a_2d_scene() {
+    assert!(!output("").packing_png);
+    assert_starts(
+        &error("packing_png = true"),
+        "scene.toml:10:15: output.packing_png = true: applies only to a 2D scene (a box with \
+         two lengths)",
+    );
+    // Turning off what is off is no error.
+    assert!(!output("packing_png = false").packing_png);
+}

@@ -22,10 +22,12 @@ class Packing:
     grains : dict[str, numpy.ndarray]
         The grain table, column by column, exactly as ``grains.csv`` holds it (same
         column names and order, same doubles; int64 for integer columns): ``id``,
-        ``phase``, ``x y z``, ``a1 a2 a3``, ``qw qx qy qz``, and any column the library
-        adds to the file.
+        ``phase``, ``x y z``, ``a1 a2 a3``, ``qw qx qy qz`` (a 2D scene: ``x y``,
+        ``a1 a2``, ``angle`` in degrees), and any column the library adds to the file.
     centres, semi_axes, quaternions, phase, ids : numpy.ndarray
-        Views of the table: (n, 3), (n, 3), (n, 4) ``[w, x, y, z]``, (n,), (n,).
+        Views of the table: (n, 3), (n, 3), (n, 4) ``[w, x, y, z]``, (n,), (n,); in a
+        2D scene centres and semi-axes are (n, 2), and :attr:`angles` (n,) gives the
+        orientations.
     summary : dict
         ``summary.json``'s content: the same keys and values the CLI writes (the
         timings are this run's). Before :meth:`write`, without the ``rve`` entry and
@@ -43,19 +45,36 @@ class Packing:
         return np.column_stack([self.grains[n] for n in names])
 
     @property
+    def dimension(self) -> int:
+        """2 for ellipses in a rectangle (a box with two lengths), 3 for ellipsoids."""
+        return 3 if "z" in self.grains else 2
+
+    @property
     def centres(self) -> np.ndarray:
-        """Centres (n, 3); inside ``[0, L)`` in a periodic box."""
-        return self._columns("x", "y", "z")
+        """Centres (n, 3), or (n, 2) in 2D; inside ``[0, L)`` in a periodic box."""
+        return self._columns(*"xyz"[: self.dimension])
 
     @property
     def semi_axes(self) -> np.ndarray:
-        """Semi-axes (n, 3) as packed."""
-        return self._columns("a1", "a2", "a3")
+        """Semi-axes (n, 3) as packed, or (n, 2) in 2D: ``a1`` along the angle."""
+        return self._columns(*["a1", "a2", "a3"][: self.dimension])
+
+    @property
+    def angles(self) -> np.ndarray:
+        """2D only: the angle (n,) in radians, in (−π/2, π/2], of each ellipse's first
+        semi-axis from x, counter-clockwise (the table's ``angle`` is in degrees)."""
+        if self.dimension != 2:
+            raise AttributeError("angles: a 3D packing has quaternions, not angles")
+        return np.deg2rad(self.grains["angle"])
 
     @property
     def quaternions(self) -> np.ndarray:
         """Orientations (n, 4), ``[w, x, y, z]`` (Hamilton); semi-axis k along column k
-        of the rotation matrix."""
+        of the rotation matrix. In 2D, the turn by :attr:`angles` about z."""
+        if self.dimension == 2:
+            half = 0.5 * self.angles
+            zero = np.zeros_like(half)
+            return np.column_stack([np.cos(half), zero, zero, np.sin(half)])
         return self._columns("qw", "qx", "qy", "qz")
 
     @property
@@ -71,7 +90,13 @@ class Packing:
     @property
     def quadratic_forms(self) -> np.ndarray:
         """``Q = R diag(a²) Rᵀ`` of each grain, (n, 6), as :func:`contact_function`
-        takes them."""
+        takes them; in 2D the ellipses' 2×2 forms ``[q00, q01, q11]``, (n, 3)."""
+        if self.dimension == 2:
+            a1, a2 = self.semi_axes.T
+            c, s = np.cos(self.angles), np.sin(self.angles)
+            return np.column_stack(
+                [a1**2 * c**2 + a2**2 * s**2, (a1**2 - a2**2) * c * s, a1**2 * s**2 + a2**2 * c**2]
+            )
         return quadratic_form(self.semi_axes, self.quaternions)
 
     @property
@@ -79,9 +104,10 @@ class Packing:
         return json.loads(self._native._summary_json())
 
     @property
-    def box_size(self) -> tuple[float, float, float]:
-        """Box edges ``(Lx, Ly, Lz)``."""
-        return self._native.box_size
+    def box_size(self) -> tuple[float, ...]:
+        """Box edges ``(Lx, Ly, Lz)``, or the rectangle's ``(Lx, Ly)`` in 2D (as
+        ``Scene.box_size``)."""
+        return tuple(self._native.box_size[: self.dimension])
 
     @property
     def seed(self) -> int:
@@ -157,11 +183,14 @@ class Packing:
         """The grains' surfaces as one ``pyvista.PolyData`` (needs pyvista), with cell
         data ``grain`` (id) and ``phase``; ``.plot()`` shows them. Each grain is a unit
         sphere of ``resolution`` × ``resolution`` points mapped onto its ellipsoid,
-        drawn about its centre (grains crossing a periodic face are not wrapped)."""
+        drawn about its centre (grains crossing a periodic face are not wrapped). In 2D,
+        each ellipse is a polygon of ``4 * resolution`` points at z = 0."""
         try:
             import pyvista as pv
         except ImportError as e:
             raise ImportError("to_pyvista needs pyvista: pip install pyvista") from e
+        if self.dimension == 2:
+            return self._polygons(pv, 4 * resolution)
         sphere = pv.Sphere(radius=1.0, theta_resolution=resolution, phi_resolution=resolution)
         unit = np.asarray(sphere.points)
         faces = np.asarray(sphere.faces).reshape(-1, 4)  # triangles: [3, i, j, k]
@@ -177,6 +206,23 @@ class Packing:
         per_grain = faces.shape[0]
         mesh.cell_data["grain"] = np.repeat(self.ids, per_grain)
         mesh.cell_data["phase"] = np.repeat(self.phase, per_grain)
+        return mesh
+
+    def _polygons(self, pv: Any, m: int) -> Any:
+        """The ellipses as one polygon each, of ``m`` points on the ellipse."""
+        t = 2 * np.pi * np.arange(m) / m
+        a1, a2 = self.semi_axes.T
+        c, s = np.cos(self.angles)[:, None], np.sin(self.angles)[:, None]
+        u, v = a1[:, None] * np.cos(t), a2[:, None] * np.sin(t)
+        x = self.centres[:, :1] + c * u - s * v
+        y = self.centres[:, 1:] + s * u + c * v
+        points = np.stack([x, y, np.zeros_like(x)], axis=-1).reshape(-1, 3)
+        n = len(self)
+        ids = np.arange(n * m).reshape(n, m)
+        faces = np.column_stack([np.full(n, m), ids]).reshape(-1)
+        mesh = pv.PolyData(points, faces)
+        mesh.cell_data["grain"] = self.ids
+        mesh.cell_data["phase"] = self.phase
         return mesh
 
 

@@ -86,8 +86,13 @@ impl PyPacking {
     fn _grain_table<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let mut text = Vec::new();
         let crystals = crystal_orientations(&self.scene, &self.result);
-        write_grains_csv(&mut text, &self.result.packing.grains, &crystals)
-            .map_err(|e| PyOSError::new_err(e.to_string()))?;
+        write_grains_csv(
+            &mut text,
+            &self.result.packing.grains,
+            &crystals,
+            self.scene.domain.dimension,
+        )
+        .map_err(|e| PyOSError::new_err(e.to_string()))?;
         let mut reader = csv::Reader::from_reader(text.as_slice());
         let header: Vec<String> = reader
             .headers()

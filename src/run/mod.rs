@@ -17,12 +17,14 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod plane_statistics;
 mod quantity;
 mod reachable;
 mod shape_statistics;
 mod size_table;
 mod statistics;
 
+pub use plane_statistics::{AngleStatistics, PlaneStatistics, Spread, NEIGHBOUR_REACH};
 pub use quantity::QuantityStatistics;
 pub use reachable::Drawn;
 pub use shape_statistics::{OrientationStatistics, RatioStatistics, ShapeStatistics};

@@ -2,6 +2,7 @@
 //! shares, sizes, shapes and tilt angles, and how far grains turned. `summary.json`
 //! and the closing report are these values.
 
+use super::plane_statistics::{AngleStatistics, PlaneStatistics};
 use super::quantity::{quantity, QuantityStatistics};
 use crate::contact::Dimension;
 use crate::laws::{ks_distance, Moments, VonMisesCdf};
@@ -23,6 +24,9 @@ pub struct Statistics {
     pub rotation: TurnStatistics,
     /// Per phase, in scene order.
     pub phases: Vec<PhaseStatistics>,
+    /// In 2D, the arrangement of the centres: hexatic order and nearest neighbours.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plane: Option<PlaneStatistics>,
 }
 
 impl Statistics {
@@ -65,6 +69,10 @@ impl Statistics {
                     shape: super::shape_statistics::shape(phase, &grains),
                     orientation_3d: super::shape_statistics::orientation(phase, &grains),
                     size_table: super::size_table::size_table(&phase.size, dimension, &grains),
+                    angle_deg: match dimension {
+                        Dimension::Two => AngleStatistics::of(&grains),
+                        Dimension::Three => None,
+                    },
                 }
             })
             .collect();
@@ -84,6 +92,11 @@ impl Statistics {
             packing_fraction: packed / volume,
             rotation,
             phases,
+            // The octree takes the box the loop packed in: it cannot fail here.
+            plane: match dimension {
+                Dimension::Two => PlaneStatistics::of(&packing.grains, &scene.domain).ok(),
+                Dimension::Three => None,
+            },
         }
     }
 }
@@ -123,7 +136,8 @@ pub struct PhaseStatistics {
     pub count_share: Share,
     /// Share of the grain volume: the scene's share against the packed volumes.
     pub volume_share: Share,
-    /// Equivalent-sphere diameter `2 (a1 a2 a3)^{1/3}` of the packed grains.
+    /// Equivalent-sphere diameter `2 (a1 a2 a3)^{1/3}` of the packed grains (in 2D,
+    /// the equivalent-circle diameter `2 √(a1 a2)`).
     pub diameter: QuantityStatistics,
     /// Aspect ratio `a1/a2` of the packed grains.
     pub aspect_ratio: QuantityStatistics,
@@ -141,6 +155,9 @@ pub struct PhaseStatistics {
     /// by number or by volume as the table counts.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub size_table: Option<super::size_table::SizeTableStatistics>,
+    /// In 2D, the angles of the ellipses' first semi-axes from x.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_deg: Option<AngleStatistics>,
 }
 
 /// `a / b`, or 0 when `b` is 0 (no grains).

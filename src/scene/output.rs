@@ -31,6 +31,7 @@ pub const MAX_RVE_CELLS: u64 = 1 << 30;
 
 /// What to write, and where (`[output]`). Files are named by the writers:
 /// `grains.csv`, `grains.vtu`, `centers.vtp`, `rve.vti`, the PNGs, `summary.json`.
+/// The default is a 3D scene's; validation sets a 2D scene's `packing_png`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct OutputSpec {
     /// Output directory, relative to the current directory. Default `out`.
@@ -49,6 +50,9 @@ pub struct OutputSpec {
     pub rve: Option<RveSpec>,
     /// Write PNG plots of the grain statistics against their targets. Default true.
     pub statistics_png: bool,
+    /// Write `packing.png`, a picture of a 2D packing (`packing_png`). Default true in
+    /// 2D; a 3D scene has none.
+    pub packing_png: bool,
     /// Write DAMASK's `material.yaml` and a `load.yaml` beside `rve.vti` (`damask`,
     /// which implies `rve = true`). Default false.
     pub damask: bool,
@@ -67,6 +71,7 @@ impl Default for OutputSpec {
             centers: true,
             rve: None,
             statistics_png: true,
+            packing_png: false,
             damask: false,
             abaqus: false,
         }
@@ -82,6 +87,7 @@ impl OutputSpec {
             || self.centers
             || self.rve.is_some()
             || self.statistics_png
+            || self.packing_png
     }
 }
 
@@ -117,6 +123,12 @@ impl VtkSpec {
     /// Points of one grain's surface: `10·4^resolution + 2`.
     pub fn points_per_grain(&self) -> usize {
         (10 << (2 * self.resolution)) + 2
+    }
+
+    /// Vertices of one ellipse's polygon in a 2D scene: `8·2^resolution` (32 at the
+    /// default, whose polygon holds `(n/2π) sin(2π/n)` = 99.4 % of the ellipse's area).
+    pub fn polygon_vertices(&self) -> usize {
+        8 << self.resolution
     }
 }
 

@@ -120,6 +120,7 @@ const TABLES: [(&str, &[&str]); 11] = [
             "rve_fill",
             "sections_png",
             "statistics_png",
+            "packing_png",
             "damask",
             "abaqus",
         ],

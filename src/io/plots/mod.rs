@@ -38,15 +38,21 @@ mod draw;
 mod extra;
 mod figure;
 mod histogram;
+mod packing;
 mod panel;
 mod poles;
 mod target;
 mod texture;
 
 pub use histogram::{aligned_bins, freedman_diaconis_bins, Histogram, MAX_BINS, MIN_BINS};
+pub use packing::{
+    packing_png_size, phase_colour, render_packing_png, PACKING_PNG_LONG_SIDE, PACKING_PNG_MARGIN,
+    PACKING_PNG_TITLE_HEIGHT,
+};
 pub use panel::axis_polar_angle;
 pub use poles::{equal_area, render_pole_figures_png};
 
+use crate::contact::Dimension;
 use crate::io::atomic::write_atomically;
 use crate::io::texture::TextureMeasure;
 use crate::packing::PackedGrain;
@@ -200,11 +206,14 @@ pub fn render_statistics_png(
     voxel: Option<&[VoxelSample]>,
     textures: &[TextureMeasure],
 ) -> Result<(), PlotError> {
-    render_run_statistics_png(out, phases, packed, voxel, None, textures)
+    render_run_statistics_png(out, phases, packed, voxel, None, textures, Dimension::Three)
 }
 
 /// [`render_statistics_png`] for a run: the legends also give the KS distances of the
-/// run's statistics (`summary.json`'s, in `statistics`, one per phase).
+/// run's statistics (`summary.json`'s, in `statistics`, one per phase). In 2D
+/// (`dimension`), the first panel is the equivalent-circle diameter, the shares are of
+/// the grains' area, and the third panel is the angle of the first semi-axis from x
+/// (against the tilt law about z when the phase has one).
 pub fn render_run_statistics_png(
     out: &mut dyn Write,
     phases: &[Phase],
@@ -212,11 +221,12 @@ pub fn render_run_statistics_png(
     voxel: Option<&[VoxelSample]>,
     statistics: Option<&[PhaseStatistics]>,
     textures: &[TextureMeasure],
+    dimension: Dimension,
 ) -> Result<(), PlotError> {
     if phases.is_empty() {
         return Err(PlotError::NoPhases);
     }
-    let mut rows = panel::rows(phases, packed, voxel)?;
+    let mut rows = panel::rows(phases, packed, voxel, dimension)?;
     let mut extras = extra::complete(&mut rows, phases, packed, voxel, statistics);
     for m in textures {
         if let Some(phase) = extras.get_mut(m.phase) {

@@ -5,7 +5,7 @@ use super::target::{
     curve, distribution_target, law_moments, law_name, tilt_curve_window, Target, CURVE_SIGMAS,
 };
 use super::{PlotError, VoxelSample};
-use crate::contact::{ellipsoid_volume, equivalent_diameter, rotation_column};
+use crate::contact::{ellipse_angle, ellipse_quaternion, rotation_column, Dimension};
 use crate::laws::{Moments, VonMisesCdf};
 use crate::packing::PackedGrain;
 use crate::scene::{aspect_ratio, tilt_angle, Orientation, Phase};
@@ -70,6 +70,7 @@ pub(super) fn rows(
     phases: &[Phase],
     packed: &[PackedGrain],
     voxel: Option<&[VoxelSample]>,
+    dimension: Dimension,
 ) -> Result<Vec<Row>, PlotError> {
     if let Some(g) = packed.iter().find(|g| g.phase >= phases.len()) {
         return Err(PlotError::GrainPhase {
@@ -90,7 +91,12 @@ pub(super) fn rows(
             phases: phases.len(),
         });
     }
-    let total_volume: f64 = packed.iter().map(|g| ellipsoid_volume(g.semi_axes)).sum();
+    let measure = |g: &PackedGrain| dimension.measure(g.semi_axes);
+    let (measured, diameter_title) = match dimension {
+        Dimension::Two => ("area", "equivalent-circle diameter"),
+        Dimension::Three => ("volume", "equivalent diameter"),
+    };
+    let total_volume: f64 = packed.iter().map(measure).sum();
     Ok(phases
         .iter()
         .enumerate()
@@ -98,9 +104,9 @@ pub(super) fn rows(
             let grains: Vec<&PackedGrain> = packed.iter().filter(|g| g.phase == index).collect();
             let samples: Option<Vec<&VoxelSample>> =
                 voxel.map(|v| v.iter().filter(|s| s.phase == index).collect());
-            let volume: f64 = grains.iter().map(|g| ellipsoid_volume(g.semi_axes)).sum();
+            let volume: f64 = grains.iter().map(|g| measure(g)).sum();
             let mut title = format!(
-                "phase {} \u{201c}{}\u{201d}: {} packed grains, {:.1} % of the grain volume \
+                "phase {} \u{201c}{}\u{201d}: {} packed grains, {:.1} % of the grain {measured} \
                  (target {:.1} %)",
                 index + 1,
                 phase.name,
@@ -122,7 +128,7 @@ pub(super) fn rows(
                     .map(|s| s.iter().filter_map(|s| f(s)).collect::<Vec<f64>>())
             };
             let diameter = Panel {
-                title: "equivalent diameter".into(),
+                title: diameter_title.into(),
                 x_label: "equivalent diameter (box units)",
                 y_label: "probability density (1/box unit)",
                 law: law_name(&phase.size),
@@ -130,7 +136,7 @@ pub(super) fn rows(
                 target: distribution_target(&phase.size),
                 packed: grains
                     .iter()
-                    .map(|g| equivalent_diameter(g.semi_axes))
+                    .map(|g| dimension.equivalent_diameter(g.semi_axes))
                     .collect(),
                 voxel: voxel_values(|s| Some(s.equivalent_diameter)),
                 ks_distance: None,
@@ -165,8 +171,16 @@ pub(super) fn rows(
                     ks_distance: None,
                 },
             };
-            let mut angle = angle_panel(&phase.orientation, &grains);
-            angle.voxel = voxel_values(|s| s.tilt.map(f64::to_degrees));
+            let angle = match (dimension, &phase.orientation) {
+                // The voxel samples' angle is the axis's to z, not in the plane.
+                (Dimension::Two, o) if !matches!(o, Orientation::Tilt { .. }) => {
+                    plane_angle_panel(o, &grains)
+                }
+                (_, o) => Panel {
+                    voxel: voxel_values(|s| s.tilt.map(f64::to_degrees)),
+                    ..angle_panel(o, &grains)
+                },
+            };
             Row {
                 title,
                 panels: [diameter, aspect, angle],
@@ -274,6 +288,56 @@ fn angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
     }
 }
 
+/// The third panel of a 2D phase without a tilt law (whose tilt about z is the
+/// ellipse's angle, [`angle_panel`]): the angle of the first semi-axis from x in
+/// `(−90°, 90°]` ([`ellipse_angle`]), against the uniform density `1/180°` for random
+/// orientations and as a single value for aligned (the axis's angle in the plane) or
+/// fixed ones.
+fn plane_angle_panel(orientation: &Orientation, grains: &[&PackedGrain]) -> Panel {
+    let (law, law_moments, target) = match *orientation {
+        // Uniform on (−90°, 90°]: mean 0, standard deviation 180°/√12. (A 2D scene has
+        // no fisher law: the uniform density is then only a reference.)
+        Orientation::Random | Orientation::Fisher(_) => (
+            "uniform",
+            Some(Moments {
+                mean: 0.0,
+                std: 180.0 / 12f64.sqrt(),
+            }),
+            Target::Curve(vec![
+                (-90.0, 0.0),
+                (-90.0, 1.0 / 180.0),
+                (90.0, 1.0 / 180.0),
+                (90.0, 0.0),
+            ]),
+        ),
+        Orientation::Aligned { axis } => (
+            "target aligned",
+            None,
+            Target::Value(ellipse_angle(ellipse_quaternion(axis[1].atan2(axis[0]))).to_degrees()),
+        ),
+        Orientation::Fixed { quaternion } => (
+            "target fixed",
+            None,
+            Target::Value(ellipse_angle(quaternion).to_degrees()),
+        ),
+        Orientation::Tilt { .. } => unreachable!("a tilt law has its own panel"),
+    };
+    Panel {
+        title: "first axis from x".into(),
+        x_label: "angle of the first axis from x (degrees)",
+        y_label: "probability density (1/degree)",
+        law: law.into(),
+        law_moments,
+        target,
+        packed: grains
+            .iter()
+            .map(|g| ellipse_angle(g.quaternion).to_degrees())
+            .collect(),
+        voxel: None,
+        ks_distance: None,
+    }
+}
+
 /// `"x"`, `"y"` or `"z"`.
 fn axis_name(index: usize) -> &'static str {
     ["x", "y", "z"][index.min(2)]
@@ -333,5 +397,20 @@ mod tests {
             &[],
         );
         assert_eq!(panel.target, Target::Value(0.0));
+    }
+
+    #[test]
+    fn plane_angles_are_uniform_or_the_aligned_axis_folded_into_a_half_turn() {
+        let a = area(&plane_angle_panel(&Orientation::Random, &[]).target);
+        assert!((a - 1.0).abs() < 1e-15, "{a}");
+        // An axis at 120° is the axis at −60°.
+        let t = 120f64.to_radians();
+        let aligned = Orientation::Aligned {
+            axis: [t.cos(), t.sin(), 0.0],
+        };
+        let Target::Value(v) = plane_angle_panel(&aligned, &[]).target else {
+            panic!("a value")
+        };
+        assert!((v + 60.0).abs() < 1e-12, "{v}");
     }
 }

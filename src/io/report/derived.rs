@@ -144,8 +144,16 @@ pub fn write_derived(
     if output.statistics_png {
         files.write(STATISTICS_PNG, |w| {
             let textures = crystals.map_or(&[][..], |c| c.measures);
-            render_run_statistics_png(w, phases, grains, samples.as_deref(), statistics, textures)
-                .map_err(io::Error::other)
+            render_run_statistics_png(
+                w,
+                phases,
+                grains,
+                samples.as_deref(),
+                statistics,
+                textures,
+                domain.dimension,
+            )
+            .map_err(io::Error::other)
         })?;
     }
     Ok(summary)

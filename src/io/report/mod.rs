@@ -31,13 +31,14 @@ pub use crate::io::texture::crystal_orientations;
 pub use summary::{CounterSummary, Summary, TimingSummary, UnitsSummary};
 pub use texture::{texture_summaries, TextureSummary};
 
+use crate::contact::{ellipse_angle, Dimension};
 use crate::io::atomic::write_atomically;
 use crate::io::cases::format_17;
 use crate::io::decks::{
     write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
     MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
 };
-use crate::io::plots::render_pole_figures_png;
+use crate::io::plots::{render_packing_png, render_pole_figures_png};
 use crate::io::texture::measure_textures;
 use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
 use crate::packing::PackedGrain;
@@ -54,14 +55,23 @@ pub const GRAINS_CSV: &str = "grains.csv";
 /// `damask` or `abaqus` is on.
 pub const POLE_FIGURES_PNG: &str = "pole_figures.png";
 
+/// File name of the picture of a 2D packing (`packing_png`).
+pub const PACKING_PNG: &str = "packing.png";
+
 /// File name of the summary.
 pub const SUMMARY_JSON: &str = "summary.json";
 
-/// Columns of `grains.csv`: id, phase index, centre, semi-axes, unit quaternion
-/// `[w, x, y, z]` (Hamilton; semi-axis `k` along column `k` of its rotation matrix).
+/// Columns of `grains.csv` for a 3D scene: id, phase index, centre, semi-axes, unit
+/// quaternion `[w, x, y, z]` (Hamilton; semi-axis `k` along column `k` of its rotation
+/// matrix).
 pub const GRAINS_HEADER: [&str; 12] = [
     "id", "phase", "x", "y", "z", "a1", "a2", "a3", "qw", "qx", "qy", "qz",
 ];
+
+/// Columns of `grains.csv` for a 2D scene: id, phase index, centre in the plane,
+/// semi-axes, and the angle in degrees, in `(−90, 90]`, of the first semi-axis from x,
+/// counter-clockwise ([`ellipse_angle`]).
+pub const GRAINS_HEADER_2D: [&str; 7] = ["id", "phase", "x", "y", "a1", "a2", "angle"];
 
 /// Columns appended to `grains.csv` (after [`GRAINS_HEADER`]): the grain's crystal
 /// orientation in the sample frame, as a unit quaternion `o0..o3` (scalar first,
@@ -69,7 +79,38 @@ pub const GRAINS_HEADER: [&str; 12] = [
 /// Bunge Euler angles in degrees.
 pub const CRYSTAL_HEADER: [&str; 7] = ["o0", "o1", "o2", "o3", "phi1", "Phi", "phi2"];
 
-/// Writes the grain table: [`GRAINS_HEADER`] then [`CRYSTAL_HEADER`], one row per grain
+/// The shape columns of `grains.csv` in `dimension`: [`GRAINS_HEADER`] or
+/// [`GRAINS_HEADER_2D`].
+pub fn grains_header(dimension: Dimension) -> &'static [&'static str] {
+    match dimension {
+        Dimension::Two => &GRAINS_HEADER_2D,
+        Dimension::Three => &GRAINS_HEADER,
+    }
+}
+
+/// The values of a grain's shape columns after `id` and `phase`: centre, semi-axes and
+/// quaternion in 3D; in 2D the ellipse in the plane (the embedded grain's `z` and third
+/// semi-axis dropped, its quaternion about z as an angle in degrees).
+fn shape_values(g: &PackedGrain, dimension: Dimension) -> Vec<f64> {
+    match dimension {
+        Dimension::Two => vec![
+            g.centre[0],
+            g.centre[1],
+            g.semi_axes[0],
+            g.semi_axes[1],
+            ellipse_angle(g.quaternion).to_degrees(),
+        ],
+        Dimension::Three => g
+            .centre
+            .iter()
+            .chain(&g.semi_axes)
+            .chain(&g.quaternion)
+            .copied()
+            .collect(),
+    }
+}
+
+/// Writes the grain table: [`grains_header`] then [`CRYSTAL_HEADER`], one row per grain
 /// (`crystals[i]` for `grains[i]`, from [`crystal_orientations`]) with integers for `id`
 /// and `phase` and 17 significant digits ([`format_17`]) for the rest, which read back
 /// to the same doubles.
@@ -77,20 +118,20 @@ pub fn write_grains_csv(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     crystals: &[[f64; 4]],
+    dimension: Dimension,
 ) -> io::Result<()> {
     let mut writer = csv::Writer::from_writer(out);
-    writer.write_record(GRAINS_HEADER.iter().chain(&CRYSTAL_HEADER))?;
-    let mut row = Vec::with_capacity(GRAINS_HEADER.len() + CRYSTAL_HEADER.len());
+    let header = grains_header(dimension);
+    writer.write_record(header.iter().chain(&CRYSTAL_HEADER))?;
+    let mut row = Vec::with_capacity(header.len() + CRYSTAL_HEADER.len());
     for (g, o) in grains.iter().zip(crystals) {
         row.clear();
         row.push(g.id.to_string());
         row.push(g.phase.to_string());
         let euler = quaternion_to_euler(*o).map(f64::to_degrees);
         row.extend(
-            g.centre
+            shape_values(g, dimension)
                 .iter()
-                .chain(&g.semi_axes)
-                .chain(&g.quaternion)
                 .chain(o)
                 .chain(&euler)
                 .map(|&v| format_17(v)),
@@ -145,8 +186,8 @@ pub struct Written {
 
 /// Creates `scene.output.dir` if needed and writes the files `scene.output` enables
 /// for `result`, each to a temporary name renamed when complete, in this order:
-/// [`GRAINS_CSV`], [`GRAINS_VTU`], [`CENTERS_VTP`], the outputs of
-/// [`write_derived`], and [`SUMMARY_JSON`] last, so that a summary means the other
+/// [`GRAINS_CSV`], [`GRAINS_VTU`], [`CENTERS_VTP`], [`PACKING_PNG`] (2D), the
+/// outputs of [`write_derived`], and [`SUMMARY_JSON`] last, so that a summary means the other
 /// files are complete.
 pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, ReportError> {
     let started = std::time::Instant::now();
@@ -160,7 +201,9 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     let crystals = crystal_orientations(scene, result);
     let measures = measure_textures(scene, result, &crystals);
     if output.grains_csv {
-        files.write(GRAINS_CSV, |w| write_grains_csv(w, grains, &crystals))?;
+        files.write(GRAINS_CSV, |w| {
+            write_grains_csv(w, grains, &crystals, domain.dimension)
+        })?;
     }
     if let Some(vtk) = &output.vtk {
         files.write(GRAINS_VTU, |w| {
@@ -169,7 +212,12 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     }
     if output.centers {
         files.write(CENTERS_VTP, |w| {
-            write_centers_vtp(w, grains, Some(&crystals))
+            write_centers_vtp(w, grains, Some(&crystals), domain.dimension)
+        })?;
+    }
+    if output.packing_png && domain.dimension == Dimension::Two {
+        files.write(PACKING_PNG, |w| {
+            render_packing_png(w, &scene.phases, grains, domain).map_err(io::Error::other)
         })?;
     }
     // Where it helps: a texture was asked for, or orientations go to a solver.
@@ -308,7 +356,7 @@ mod tests {
         };
         let mut out = Vec::new();
         let crystal = [0.5, 0.5, -0.5, 0.5];
-        write_grains_csv(&mut out, &[grain], &[crystal]).unwrap();
+        write_grains_csv(&mut out, &[grain], &[crystal], Dimension::Three).unwrap();
         let text = String::from_utf8(out).unwrap();
         let mut lines = text.lines();
         assert_eq!(
@@ -328,6 +376,41 @@ mod tests {
             .collect();
         assert_eq!(values[..14], want[..]);
         assert_eq!(row[3], "6.6666666666666663e-1");
+        assert_eq!(lines.next(), None);
+    }
+
+    #[test]
+    fn grains_csv_of_ellipses_has_the_plane_columns_and_the_angle_in_degrees() {
+        use crate::contact::{ellipse_quaternion, ellipse_semi_axes};
+        // 2.0 rad is past a quarter turn: the same ellipse as 2 − π.
+        let grains = [0.3, 2.0].map(|theta| PackedGrain {
+            id: 0,
+            phase: 0,
+            centre: [1.5, 2.5, 5.0],
+            semi_axes: ellipse_semi_axes(2.0, 0.5),
+            quaternion: ellipse_quaternion(theta),
+        });
+        let mut out = Vec::new();
+        let crystal = [1.0, 0.0, 0.0, 0.0];
+        write_grains_csv(&mut out, &grains, &[crystal; 2], Dimension::Two).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next(),
+            Some("id,phase,x,y,a1,a2,angle,o0,o1,o2,o3,phi1,Phi,phi2")
+        );
+        for want in [0.3, 2.0 - std::f64::consts::PI] {
+            let row: Vec<f64> = lines
+                .next()
+                .unwrap()
+                .split(',')
+                .map(|v| v.parse().unwrap())
+                .collect();
+            assert_eq!(row[2..6], [1.5, 2.5, 2.0, 0.5]);
+            // sin_cos, atan2 and the conversion to degrees: a few ε of 180°.
+            assert!((row[6] - want.to_degrees()).abs() < 1e-12, "{}", row[6]);
+            assert_eq!(row[7..11], crystal);
+        }
         assert_eq!(lines.next(), None);
     }
 }

@@ -4,7 +4,7 @@
 
 use super::texture::TextureSummary;
 use super::RveSummary;
-use crate::run::{PhaseStatistics, RunResult, TurnStatistics};
+use crate::run::{PhaseStatistics, PlaneStatistics, RunResult, TurnStatistics};
 use crate::scene::{Boundary, Scene};
 use serde::Serialize;
 
@@ -31,7 +31,8 @@ pub struct Summary<'a> {
     pub target_fraction: f64,
     /// Fraction the drawn grains fill at full size (scale 1).
     pub full_size_fraction: f64,
-    /// Fraction the written grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`.
+    /// Fraction the written grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`, or the area
+    /// fraction `Σ π a1 a2 / (Lx Ly)` in 2D.
     pub packing_fraction: f64,
     /// Estimate of the densest random packing of the drawn grains, made before
     /// packing: Farr and Groot's model for spheres of their equivalent diameters
@@ -69,6 +70,9 @@ pub struct Summary<'a> {
     pub rotation: &'a TurnStatistics,
     /// Per phase, in scene order.
     pub phases: &'a [PhaseStatistics],
+    /// In 2D: the hexatic order ψ6 and the nearest-neighbour distances.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plane: Option<&'a PlaneStatistics>,
     /// The voxel RVE, when one was written.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rve: Option<&'a RveSummary>,
@@ -179,6 +183,7 @@ impl<'a> Summary<'a> {
             },
             rotation: &statistics.rotation,
             phases: &statistics.phases,
+            plane: statistics.plane.as_ref(),
             rve,
             textures,
             warnings: &scene.warnings,

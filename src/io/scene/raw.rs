@@ -245,6 +245,7 @@ pub(crate) struct RawOutput {
     pub rve_fill: Opt<RawFill>,
     pub sections_png: Opt<bool>,
     pub statistics_png: Opt<bool>,
+    pub packing_png: Opt<bool>,
     pub damask: Opt<bool>,
     pub abaqus: Opt<bool>,
 }

@@ -1,7 +1,8 @@
 //! `centers.vtp`: one point per grain, with its shape as tensors for glyphs.
 
 use super::xml::{write_piece, Array, Piece, Scalar, Section};
-use super::{grain_id, phase_index, rotation};
+use super::{flat_ellipse, grain_id, phase_index, rotation};
+use crate::contact::Dimension;
 use crate::packing::PackedGrain;
 use crate::scene::quaternion_to_euler;
 use std::io::{self, Write};
@@ -42,11 +43,24 @@ pub fn quadratic_form(grain: &PackedGrain) -> [f64; 9] {
 /// `quadratic_form` ([`quadratic_form`], 9 components); with `crystals` (`crystals[i]`
 /// the crystal orientation of `grains[i]`), also `crystal_quaternion` (4 components,
 /// scalar first) and `euler_angles` (Bunge, degrees).
+///
+/// In 2D (`dimension`), each ellipse lies in the plane z = 0 with its third semi-axis 0
+/// (the embedded grain flattened): the points are `(x, y, 0)`, `semi_axes` `(a1, a2, 0)`, and the
+/// tensors have a zero z row and column (a Tensor Glyph draws the flat ellipse).
 pub fn write_centers_vtp(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     crystals: Option<&[[f64; 4]]>,
+    dimension: Dimension,
 ) -> io::Result<()> {
+    let flat: Vec<PackedGrain>;
+    let grains = match dimension {
+        Dimension::Two => {
+            flat = grains.iter().map(flat_ellipse).collect();
+            &flat[..]
+        }
+        Dimension::Three => grains,
+    };
     let n = grains.len();
     for g in grains {
         grain_id(g)?;

@@ -22,13 +22,17 @@ pub fn periodic_shifts(grain: &PackedGrain, domain: &Domain) -> Vec<[f64; 3]> {
     }
     let r = rotation(grain.quaternion);
     let mut per_axis: [Vec<f64>; 3] = Default::default();
+    let axes = domain.sides().len();
     for (i, shifts) in per_axis.iter_mut().enumerate() {
+        shifts.push(0.0);
+        if i >= axes {
+            continue;
+        }
         let extent = (0..3)
             .map(|k| (grain.semi_axes[k] * r[k][i]).powi(2))
             .sum::<f64>()
             .sqrt();
         let (c, l) = (grain.centre[i], domain.size[i]);
-        shifts.push(0.0);
         if c - extent < 0.0 {
             shifts.push(l);
         } else if c + extent > l {
@@ -107,7 +111,7 @@ fn per_surface<'a, const N: usize>(
 }
 
 /// The little-endian bytes of several `f64`s, one after another.
-fn f64s<const N: usize, const B: usize>(values: [f64; N]) -> [u8; B] {
+pub(super) fn f64s<const N: usize, const B: usize>(values: [f64; N]) -> [u8; B] {
     let mut out = [0; B];
     for (chunk, v) in out.chunks_exact_mut(8).zip(values) {
         chunk.copy_from_slice(&v.to_le_bytes());
@@ -115,22 +119,8 @@ fn f64s<const N: usize, const B: usize>(values: [f64; N]) -> [u8; B] {
     out
 }
 
-/// Writes `grains.vtu` (VTK XML UnstructuredGrid, arrays zlib-compressed in raw
-/// appended data, `io/vtk/xml.rs`, points `Float32`): each grain's surface, and in a
-/// periodic box with `spec.periodic_images` its [`periodic_shifts`] copies, as
-/// `20·4^resolution` triangles each. Cell data, per triangle: `grain_id` and `phase`
-/// (the CSV's, `Int32`), `volume` `4π/3·a1·a2·a3` and `equivalent_diameter`
-/// `2·(a1·a2·a3)^{1/3}` of the exact ellipsoid, `aspect_ratio` `a1/a2` (first
-/// semi-axis over second: both as in the summary, [`crate::run::Statistics`]),
-/// `b_over_a` and `c_over_a` (the semi-axes sorted `a ≥ b ≥ c`, DREAM.3D's ratios,
-/// which describe triaxial grains), and `periodic_image` (`UInt8`: 0 for the grain, 1
-/// for a copy); with `crystals` (`crystals[i]` the crystal orientation of
-/// `grains[i]`), also `crystal_quaternion` (4 components, scalar first) and
-/// `euler_angles` (Bunge, degrees). Topology is `Int32` (`Int64` past 2³¹ − 1).
-///
-/// A grain's values repeat over its triangles, which zlib stores for next to nothing;
-/// the surfaces are made one at a time, so memory does not grow with the file.
-pub fn write_grains_vtu(
+/// Writes `grains.vtu` of a 3D scene: see [`write_grains_vtu`](super::write_grains_vtu).
+pub(super) fn write_surfaces_vtu(
     out: &mut dyn Write,
     grains: &[PackedGrain],
     domain: &Domain,

@@ -19,7 +19,11 @@ pub(super) fn output(
     raw: Option<&Spanned<RawOutput>>,
     domain: &Domain,
 ) -> Result<OutputSpec, SceneError> {
-    let mut spec = OutputSpec::default();
+    let plane = domain.dimension == Dimension::Two;
+    let mut spec = OutputSpec {
+        packing_png: plane,
+        ..OutputSpec::default()
+    };
     let Some(raw) = raw.map(Spanned::get_ref) else {
         return Ok(spec);
     };
@@ -35,6 +39,14 @@ pub(super) fn output(
     spec.summary_json = flag(&raw.summary_json, spec.summary_json);
     spec.centers = flag(&raw.centers, spec.centers);
     spec.statistics_png = flag(&raw.statistics_png, spec.statistics_png);
+    if let Some(v) = raw.packing_png.as_ref().filter(|v| *v.get_ref() && !plane) {
+        return Err(src.invalid_at(
+            "output.packing_png",
+            v,
+            "applies only to a 2D scene (a box with two lengths)",
+        ));
+    }
+    spec.packing_png = flag(&raw.packing_png, spec.packing_png);
     spec.damask = flag(&raw.damask, false);
     spec.abaqus = flag(&raw.abaqus, false);
     spec.vtk = vtk(src, raw, domain)?;
