@@ -1,10 +1,11 @@
 //! `[output]` → [`OutputSpec`]: defaults filled in, the RVE's cells resolved against
 //! the box, and every key that cannot take effect rejected rather than ignored.
 
+use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawFill, RawOutput};
 use crate::scene::{
-    proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
+    rve_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
     MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION, MIN_VTK_RESOLUTION,
 };
 use crate::scene::{Boundary, Domain};
@@ -137,7 +138,7 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
             Some(("output.rve_voxel_size", h.span())),
         ),
         // At most DEFAULT_RVE_CELLS³, far below the limit.
-        (None, None) => (proportional_cells(DEFAULT_RVE_CELLS, domain.size), None),
+        (None, None) => (rve_cells(DEFAULT_RVE_CELLS, domain), None),
     };
     let count: u64 = cells.iter().map(|&n| n as u64).product();
     if let Some((key, at)) = from.filter(|_| count > MAX_RVE_CELLS) {
@@ -162,7 +163,8 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
 }
 
 /// `rve_resolution = N` (N cells along the longest edge, proportionally many along
-/// the others) or `[nx, ny, nz]`.
+/// the others) or `[nx, ny, nz]`; in 2D `N` along the rectangle's longer side or
+/// `[nx, ny]`, and always one layer along z.
 fn resolution(
     src: &Source,
     raw: &Spanned<toml::Value>,
@@ -174,30 +176,43 @@ fn resolution(
         toml::Value::Integer(n) if (1..=limit).contains(n) => Some(*n as usize),
         _ => None,
     };
-    let shape = format!(
-        "must be an integer or an array of three integers, each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
-    );
+    let plane = domain.dimension == Dimension::Two;
+    let shape = if plane {
+        format!(
+            "must be an integer or an array of two integers [nx, ny] (a 2D scene has one \
+             layer of cells along z), each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
+        )
+    } else {
+        format!(
+            "must be an integer or an array of three integers, each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
+        )
+    };
+    let axes = if plane { 2 } else { 3 };
     match raw.get_ref() {
-        toml::Value::Array(items) if items.len() == 3 => {
-            let cells: Vec<usize> = items.iter().filter_map(edge).collect();
+        toml::Value::Array(items) if items.len() == axes => {
+            let mut cells: Vec<usize> = items.iter().filter_map(edge).collect();
+            if plane && cells.len() == 2 {
+                cells.push(1);
+            }
             <[usize; 3]>::try_from(cells).map_err(|_| src.invalid_at(key, raw, shape))
         }
         value => match edge(value) {
-            Some(n) => Ok(proportional_cells(n, domain.size)),
+            Some(n) => Ok(rve_cells(n, domain)),
             None => Err(src.invalid_at(key, raw, shape)),
         },
     }
 }
 
-/// `rve_voxel_size = h`: `round(L/h)` cells along each edge, at least 1.
+/// `rve_voxel_size = h`: `round(L/h)` cells along each edge, at least 1; in 2D along
+/// the rectangle's two, and one layer along z.
 fn voxel_size(src: &Source, raw: &Spanned<f64>, domain: &Domain) -> Result<[usize; 3], SceneError> {
     let key = "output.rve_voxel_size";
     let h = *raw.get_ref();
     if !(h.is_finite() && h > 0.0) {
         return Err(src.invalid_at(key, raw, "must be positive and finite"));
     }
-    let mut cells = [0; 3];
-    for (i, (&l, n)) in domain.size.iter().zip(&mut cells).enumerate() {
+    let mut cells = [1; 3];
+    for (i, (&l, n)) in domain.sides().iter().zip(&mut cells).enumerate() {
         let count = (l / h).round().max(1.0);
         if count > MAX_RVE_CELLS_PER_EDGE as f64 {
             let axis = ["x", "y", "z"][i];
