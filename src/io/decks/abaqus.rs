@@ -14,6 +14,12 @@
 //! `H`, and the reaction force on `RPX` is the total force on the face `x = Lx`. Each
 //! far node is the first (dependent) term of exactly one equation and never a term's
 //! image, so the equations are independent.
+//!
+//! # Two dimensions
+//! A 2D grid (one layer of pixels) is written as its plane: CPE4 quadrilaterals,
+//! element `1 + i + Nx j` on pixel `(i, j)`, node `1 + i + (Nx+1) j` at `(i hx, j hy)`
+//! (the numbers of the 3D formulas at `k = 0`), reference nodes `RPX`, `RPY`, and the
+//! same equations on the two in-plane components (`super::boundary` writes both).
 
 use super::boundary::{
     axes, last_layer, node, reference_nodes, write_equations, write_list, write_node_sets, AXES,
