@@ -82,8 +82,8 @@ def main():
         want = np.ones(len(grid_points), dtype=bool)
         for axis, side in zip(name[0::2], name[1::2]):
             a = "XYZ".index(axis)
-            plane = 0.0 if side == "0" else size[a]
-            want &= np.abs(grid_points[:, a] - plane) <= PLANE_TOL * size[a]
+            at = 0.0 if side == "0" else size[a]
+            want &= np.abs(grid_points[:, a] - at) <= PLANE_TOL * size[a]
         got = np.zeros(len(grid_points), dtype=bool)
         got[np.asarray(ids)] = True
         check(np.array_equal(got, want), f"node set {name} is not the nodes on its planes")
