@@ -155,11 +155,11 @@ fn a_plane_grid_is_one_layer_as_thick_as_its_pixels() {
     let err = voxelise(&[], &d, [30, 20, 2], RveFill::Matrix, 1).unwrap_err();
     assert!(matches!(err, VoxelError::PlaneLayers { cells: 2 }), "{err}");
     let grid = voxelise(&[], &d, [30, 25, 1], RveFill::Matrix, 1).unwrap();
-    let [hx, hy] = [0.1, 0.08];
+    let [hx, hy]: [f64; 2] = [0.1, 0.08];
     assert_eq!(grid.size[..2], [3.0, 2.0]);
     // √(hx hy), from the spacings as the crate computes them (3/30, 2/25).
     assert_eq!(grid.size[2], layer_thickness(3.0 / 30.0, 2.0 / 25.0));
-    assert!((grid.size[2] - (hx * hy as f64).sqrt()).abs() < 1e-15);
+    assert!((grid.size[2] - (hx * hy).sqrt()).abs() < 1e-15);
     let mut out = Vec::new();
     write_vti(&grid, LengthUnit::Millimetre, None, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
