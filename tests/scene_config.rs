@@ -223,8 +223,8 @@ fn wrong_types_name_key_and_value() {
         "scene.toml:1:8: seed: invalid value: integer `-3`",
     );
     assert_starts(
-        &error(&with_line(4, "size = [50.0, 50.0]")),
-        "scene.toml:4:8: box.size: invalid length 2",
+        &error(&with_line(4, "size = [50.0, 50.0, 50.0, 50.0]")),
+        "scene.toml:4:8: box.size = [50.0, 50.0, 50.0, 50.0]: must be [Lx, Ly, Lz] (a box of ellipsoids) or [Lx, Ly] (a 2D scene: a rectangle of ellipses), not 4 lengths",
     );
     assert_starts(
         &error(&with_line(5, "boundary = \"peridic\"")),

@@ -75,6 +75,15 @@ impl Dimension {
         }
     }
 
+    /// The length scale `s` that changes a measure by `ratio` (`s^D = ratio`):
+    /// `√ratio` or `∛ratio`.
+    pub fn length_scale(self, ratio: f64) -> f64 {
+        match self {
+            Self::Two => ratio.sqrt(),
+            Self::Three => ratio.cbrt(),
+        }
+    }
+
     /// The densest packing of ellipses or ellipsoids of one shape: `π/√12` (an affine
     /// image of the hexagonal disc packing) or 0.7707 (Donev et al., Science 2004).
     pub fn densest_fraction(self) -> f64 {

@@ -17,7 +17,10 @@ mod table;
 mod von_mises;
 mod von_mises_cdf;
 
-pub use close_packing::{random_close_packing, random_close_packing_with, FREE_LENGTH, RODS};
+pub use close_packing::{
+    random_close_packing, random_close_packing_of, random_close_packing_with, FREE_LENGTH,
+    FREE_LENGTH_DISCS, RODS,
+};
 #[cfg(test)]
 pub(crate) use distribution::sample_laws;
 pub use distribution::Distribution;

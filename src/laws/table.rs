@@ -5,13 +5,15 @@
 //! below `xᵢ` or the **volume** fraction (a sieve curve: the mass passing a sieve of
 //! opening `xᵢ`). Between points `F` is interpolated linearly in `x` or in `ln x`.
 //! Grains are drawn by number, so a volume table is converted: where the volume
-//! density is `f_v(x)`, the number density is `∝ f_v(x)/x³`. In each interval the
-//! number density is then a power `k xᵖ`, with
+//! density is `f_v(x)`, the number density is `∝ f_v(x)/x³`. A 2D scene's table may
+//! be by **area** (the fraction of the ellipses' area below `x`), converted with
+//! `x²`. In each interval the number density is then a power `k xᵖ`, with
 //!
 //! | by \ interpolation | linear | log |
 //! |--------------------|--------|-----|
 //! | number             | p = 0  | −1  |
 //! | volume             | p = −3 | −4  |
+//! | area               | p = −2 | −3  |
 //!
 //! so the CDF, its inverse and every moment are exact (no quadrature). The law is
 //! truncated to the table's ends: `F` is rescaled to run from 0 at the first point to
@@ -26,6 +28,20 @@ pub enum TableBasis {
     Number,
     /// Fraction of the grain volume (a sieve curve: volume or mass passing).
     Volume,
+    /// Fraction of the grain area, in 2D (the area passing by equivalent-circle
+    /// diameter, as image analysis of a section measures it).
+    Area,
+}
+
+impl TableBasis {
+    /// The power of the diameter a grain's weight grows with: 0 (count), 3 or 2.
+    pub fn weight_power(self) -> i32 {
+        match self {
+            Self::Number => 0,
+            Self::Volume => 3,
+            Self::Area => 2,
+        }
+    }
 }
 
 /// How a table's fractions are interpolated between points.
@@ -155,15 +171,16 @@ impl TableLaw {
         let scaled: Vec<f64> = fraction.iter().map(|f| (f - f0) / (f1 - f0)).collect();
         let p = exponent(basis, interpolation);
         // Number mass of each interval: the given fraction for a number table; for a
-        // volume table, ΔF / ∫x^{p+3} · ∫x^p.
+        // volume (area) table, ΔF / ∫x^{p+3} · ∫x^p (x^{p+2}).
         let mass: Vec<f64> = (0..x.len() - 1)
             .map(|i| {
                 let df = scaled[i + 1] - scaled[i];
                 match basis {
                     TableBasis::Number => df,
-                    TableBasis::Volume => {
+                    TableBasis::Volume | TableBasis::Area => {
+                        let w = basis.weight_power();
                         df * power_integral(p, x[i], x[i + 1])
-                            / power_integral(p + 3, x[i], x[i + 1])
+                            / power_integral(p + w, x[i], x[i + 1])
                     }
                 }
             })
@@ -280,6 +297,8 @@ fn exponent(basis: TableBasis, interpolation: TableInterpolation) -> i32 {
         (TableBasis::Number, TableInterpolation::Log) => -1,
         (TableBasis::Volume, TableInterpolation::Linear) => -3,
         (TableBasis::Volume, TableInterpolation::Log) => -4,
+        (TableBasis::Area, TableInterpolation::Linear) => -2,
+        (TableBasis::Area, TableInterpolation::Log) => -3,
     }
 }
 

@@ -68,7 +68,11 @@ pub(super) const CYCLE_WINDOW: f64 = 0.5;
 
 /// The step budget of a relaxation below the target scale:
 /// [`ProtocolParams::trial_steps`] times `effort` up to 1 (more buys no density: see
-/// [`recompression_cycles`]), at least one step.
+/// [`recompression_cycles`]), at least one step. It is also the patience of the
+/// relaxations before the search (the target's and its compressions, module
+/// `jamming`): at `effort = 0.1`, 10 000 equal spheres at full size 0.66 took 1 141 FIRE
+/// steps to 0.6362 instead of 2 075 to 0.6369 with the patience of effort 1, fewer than
+/// the 1 731 of the same spheres from 0.70 (BENCHMARKS.md, issue 27, second round).
 pub(super) fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
     ((protocol.trial_steps as f64 * effort.min(1.0)).ceil() as u64).max(1)
 }

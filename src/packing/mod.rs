@@ -26,8 +26,8 @@
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
 //!    counts as jammed at that scale. A first jam that is *shallow* (the target just
 //!    above the jamming point: the relaxation from random positions creeps, and is cut
-//!    after [`trial_steps`](ProtocolParams::trial_steps) by the jamming test's
-//!    patience) sets no bound: the state is compressed by 2 % of scale and relaxed
+//!    after [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by
+//!    the jamming test's patience) sets no bound: the state is compressed by 2 % of scale and relaxed
 //!    again until a jam is deep, and the search starts from there, so that a start
 //!    just above jamming costs and reaches about what one far above it does (`effort.rs`,
 //!    `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed state is then
@@ -70,6 +70,7 @@ pub use job::{Counters, Job, PackError, Packing, Progress, Verification};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
 pub use verify::{verify, MIN_GAP_REACH};
 
+use crate::contact::Dimension;
 use crate::scene::{Boundary, Rotation};
 use effort::{
     recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW, QUENCH_LIMIT,
@@ -110,10 +111,21 @@ pub fn pack(
     let protocol = tuning.protocol;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(POSITION_STREAM);
-    let centres: Vec<[f64; 3]> = specs
-        .iter()
-        .map(|_| [0, 1, 2].map(|k| rng.random::<f64>() * domain.size[k]))
-        .collect();
+    let centres: Vec<[f64; 3]> = match domain.dimension {
+        Dimension::Three => specs
+            .iter()
+            .map(|_| [0, 1, 2].map(|k| rng.random::<f64>() * domain.size[k]))
+            .collect(),
+        // Ellipses lie in the slab's mid-plane, which no force leaves (module
+        // `contact::Dimension`: every normal and torque of two of them is in-plane).
+        Dimension::Two => specs
+            .iter()
+            .map(|_| {
+                let [x, y] = [0, 1].map(|k| rng.random::<f64>() * domain.size[k]);
+                [x, y, domain.plane_z()]
+            })
+            .collect(),
+    };
     // The loop works on the grains in the order of their starting places along a
     // space-filling curve, so that neighbours sit close in memory.
     let order = spatial_order(&centres, domain.size);
@@ -161,9 +173,10 @@ pub fn pack(
         } else {
             trial_steps(&protocol, params.effort)
         };
-        // Shallow relaxations from random positions creep (module `jamming`).
+        // Shallow relaxations from random positions creep (module `jamming`); below
+        // `effort = 1` they are cut as soon as a trial's budget runs out.
         fire.patience = if quenching {
-            protocol.trial_steps
+            trial_steps(&protocol, params.effort)
         } else {
             u64::MAX
         };

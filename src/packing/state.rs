@@ -4,7 +4,8 @@
 
 use super::grains::{turn_angle, turn_vector};
 use super::PackError;
-use crate::contact::{dot, ellipsoid_volume, Ellipsoid, PreparedEllipsoid};
+use crate::contact::Dimension;
+use crate::contact::{dot, Ellipsoid, PreparedEllipsoid};
 use crate::octree::{wrap_coordinate, BoxShape, Sphere};
 use crate::scene::{Boundary, Domain, GrainSpec, Rotation};
 use rayon::prelude::*;
@@ -80,7 +81,7 @@ impl State {
         };
         for (id, spec) in specs.iter().enumerate() {
             let (shape, widths) = state.shape_of(id, spec.quaternion)?;
-            state.volumes.push(ellipsoid_volume(spec.semi_axes));
+            state.volumes.push(domain.dimension.measure(spec.semi_axes));
             state.max_bounding_radius = state.max_bounding_radius.max(shape.bounding_radius());
             state.shapes.push(shape);
             state.half_widths.push(widths);
@@ -157,9 +158,13 @@ impl State {
         );
     }
 
-    /// Packing fraction at scale `s`.
+    /// Packing fraction at scale `s` (areas scale by `s²` in 2D).
     pub fn fraction(&self, s: f64) -> f64 {
-        s * s * s * self.total_volume / self.domain.volume()
+        let power = match self.domain.dimension {
+            Dimension::Three => s * s * s,
+            Dimension::Two => s * s,
+        };
+        power * self.total_volume / self.domain.volume()
     }
 
     /// Wraps every centre into `[0, L)` in a periodic box; in a walled box, puts it

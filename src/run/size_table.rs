@@ -4,7 +4,7 @@
 //! this is the grading of the packed aggregate, the figure a concrete technologist
 //! reads; the number law the grains are drawn from is compared in `diameter`.
 
-use crate::contact::{ellipsoid_volume, equivalent_diameter};
+use crate::contact::Dimension;
 use crate::laws::{Distribution, TableBasis, TableLaw};
 use crate::packing::PackedGrain;
 use serde::Serialize;
@@ -32,6 +32,7 @@ pub struct SizeTableStatistics {
 /// The table statistics of a phase whose size law is a table; `None` otherwise.
 pub(crate) fn size_table(
     size: &Distribution,
+    dimension: Dimension,
     grains: &[&PackedGrain],
 ) -> Option<SizeTableStatistics> {
     let Distribution::Table(table) = size else {
@@ -42,9 +43,9 @@ pub(crate) fn size_table(
         .map(|g| {
             let w = match table.basis {
                 TableBasis::Number => 1.0,
-                TableBasis::Volume => ellipsoid_volume(g.semi_axes),
+                TableBasis::Volume | TableBasis::Area => dimension.measure(g.semi_axes),
             };
-            (equivalent_diameter(g.semi_axes), w)
+            (dimension.equivalent_diameter(g.semi_axes), w)
         })
         .collect();
     Some(table_statistics(table, &weighted))
@@ -66,6 +67,7 @@ pub(crate) fn table_statistics(table: &TableLaw, weighted: &[(f64, f64)]) -> Siz
         by: match table.basis {
             TableBasis::Number => "number",
             TableBasis::Volume => "volume",
+            TableBasis::Area => "area",
         },
         sizes: table.x.to_vec(),
         target: table.fraction.to_vec(),

@@ -3,7 +3,7 @@
 //! and the closing report are these values.
 
 use super::quantity::{quantity, QuantityStatistics};
-use crate::contact::{ellipsoid_volume, equivalent_diameter};
+use crate::contact::Dimension;
 use crate::laws::{ks_distance, Moments, VonMisesCdf};
 use crate::packing::{sorted_turns, PackedGrain, Packing};
 use crate::scene::{aspect_ratio, tilt_angle, GrainCount, GrainSpec, Orientation, Phase, Scene};
@@ -16,7 +16,8 @@ pub struct Statistics {
     pub target_fraction: f64,
     /// Fraction the drawn grains fill at full size (scale 1).
     pub full_size_fraction: f64,
-    /// Fraction the packed grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`.
+    /// Fraction the packed grains fill: `Σ (4π/3) a1 a2 a3 / (Lx Ly Lz)`, or the
+    /// area fraction `Σ π a1 a2 / (Lx Ly)` in 2D.
     pub packing_fraction: f64,
     /// Whether and how far grains turned from their drawn orientations.
     pub rotation: TurnStatistics,
@@ -28,7 +29,8 @@ impl Statistics {
     /// The statistics of `packing`, a packing of `specs` drawn from `scene`.
     pub fn new(scene: &Scene, specs: &[GrainSpec], packing: &Packing) -> Self {
         let volume = scene.domain.volume();
-        let grain_volume = |g: &PackedGrain| ellipsoid_volume(g.semi_axes);
+        let dimension = scene.domain.dimension;
+        let grain_volume = |g: &PackedGrain| dimension.measure(g.semi_axes);
         let packed: f64 = packing.grains.iter().map(grain_volume).sum();
         let full: f64 = specs.iter().map(GrainSpec::volume).sum();
         let count_weight: f64 = scene
@@ -44,7 +46,8 @@ impl Statistics {
                 let grains: Vec<&PackedGrain> =
                     packing.grains.iter().filter(|g| g.phase == index).collect();
                 let phase_volume: f64 = grains.iter().map(|g| grain_volume(g)).sum();
-                let (diameter, aspect_ratio, tilt_angle_deg) = grain_statistics(phase, &grains);
+                let (diameter, aspect_ratio, tilt_angle_deg) =
+                    grain_statistics(phase, dimension, &grains);
                 PhaseStatistics {
                     name: phase.name.clone(),
                     grains: grains.len(),
@@ -61,7 +64,7 @@ impl Statistics {
                     tilt_angle_deg,
                     shape: super::shape_statistics::shape(phase, &grains),
                     orientation_3d: super::shape_statistics::orientation(phase, &grains),
-                    size_table: super::size_table::size_table(&phase.size, &grains),
+                    size_table: super::size_table::size_table(&phase.size, dimension, &grains),
                 }
             })
             .collect();
@@ -153,6 +156,7 @@ fn ratio(a: f64, b: f64) -> f64 {
 /// packed grains.
 fn grain_statistics(
     phase: &Phase,
+    dimension: Dimension,
     grains: &[&PackedGrain],
 ) -> (
     QuantityStatistics,
@@ -161,7 +165,7 @@ fn grain_statistics(
 ) {
     let diameters: Vec<f64> = grains
         .iter()
-        .map(|g| equivalent_diameter(g.semi_axes))
+        .map(|g| dimension.equivalent_diameter(g.semi_axes))
         .collect();
     let aspects: Vec<f64> = grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect();
     let tilt_angle_deg = match phase.orientation {

@@ -164,6 +164,15 @@ impl Phase {
             .size
             .sample(rng)
             .ok_or_else(|| rejected("equivalent diameter"))?;
+        if self.dimension == Dimension::Two {
+            let alpha = (self.aspect_ratio.sample(rng)).ok_or_else(|| rejected("aspect ratio"))?;
+            let (theta, tilt) = (self.orientation.sample_angle(rng))
+                .ok_or_else(|| rejected("orientation angle"))?;
+            return Ok(GrainSpec {
+                tilt,
+                ..GrainSpec::ellipse(index, d, alpha, theta)
+            });
+        }
         if let Some(shape) = &self.triaxial {
             let (beta, gamma) = shape.sample(rng).map_err(rejected)?;
             let (q, _) = self
@@ -220,15 +229,30 @@ impl Phase {
                 shape_only.sample_grain(index, rng).ok()?
             }
         };
+        if let Some(c) = g.crystal {
+            spec.crystal = c;
+        }
+        if self.dimension == Dimension::Two {
+            // The table's semi-axes and quaternion are already an ellipse's, about z.
+            let (q, tilt) = match g.quaternion {
+                Some(q) => (q, None),
+                None => {
+                    let (theta, tilt) = self.orientation.sample_angle(rng)?;
+                    (ellipse_quaternion(theta), tilt)
+                }
+            };
+            spec.quaternion = q;
+            spec.tilt = tilt;
+            spec.dimension = Dimension::Two;
+            spec.turn_axis = Some(PLANE_NORMAL);
+            return Some(spec);
+        }
         let (q, tilt) = match g.quaternion {
             Some(q) => (q, None),
             None => self.orientation.sample(rng)?,
         };
         spec.quaternion = q;
         spec.tilt = tilt;
-        if let Some(c) = g.crystal {
-            spec.crystal = c;
-        }
         spec.turn_axis = turn_axis(&self.orientation, q);
         Some(spec)
     }

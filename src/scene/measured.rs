@@ -2,13 +2,13 @@
 //! `grains.csv` written by `pack`), either exactly those grains or drawn from them with
 //! replacement.
 
-use crate::contact::equivalent_diameter;
+use crate::contact::{equivalent_diameter, Dimension};
 use std::sync::Arc;
 
 /// One measured grain.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MeasuredGrain {
-    /// Equivalent-sphere diameter.
+    /// Equivalent-sphere diameter (equivalent-circle in 2D).
     pub diameter: f64,
     /// Semi-axes `[a1, a2, a3]`, if the table gives them (else the phase's shape law).
     pub semi_axes: Option<[f64; 3]>,
@@ -55,6 +55,8 @@ pub struct Measured {
     pub grains: Arc<[MeasuredGrain]>,
     /// Exactly these, or drawn from them.
     pub mode: MeasuredMode,
+    /// Ellipsoids, or ellipses (a 2D scene's table: `a1`, `a2`, `angle`).
+    pub dimension: Dimension,
 }
 
 impl Measured {
@@ -73,11 +75,17 @@ impl Measured {
         self.grains[0].crystal.is_some()
     }
 
-    /// Total volume of the grains, `Σ π d³/6`.
+    /// Total volume of the grains, `Σ π d³/6`; in 2D their area `Σ π d²/4`.
     pub fn volume(&self) -> f64 {
-        self.grains
-            .iter()
-            .map(|g| std::f64::consts::PI / 6.0 * g.diameter.powi(3))
-            .sum()
+        match self.dimension {
+            Dimension::Three => self
+                .grains
+                .iter()
+                .map(|g| std::f64::consts::PI / 6.0 * g.diameter.powi(3))
+                .sum(),
+            Dimension::Two => (self.grains.iter())
+                .map(|g| self.dimension.measure_of_diameter(g.diameter))
+                .sum(),
+        }
     }
 }

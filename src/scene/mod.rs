@@ -35,6 +35,7 @@ mod params;
 mod shape;
 mod units;
 
+use crate::contact::Dimension;
 use crate::laws::Distribution;
 pub use crystal::{
     euler_to_quaternion, fibre_angle, quaternion_to_euler, random_angle_cdf, rotate,
@@ -64,6 +65,8 @@ pub use units::{
 /// (Donev et al., *Phys. Rev. Lett.* 92, 255506, 2004), denser than any sphere packing
 /// (0.7405). Random packings made by growth jam well below it (spheres ≈ 0.64,
 /// spheroids of aspect 1.5 ≈ 0.70–0.72), so a request above it cannot be met.
+///
+/// A 2D scene's limit is [`Dimension::densest_fraction`] of ellipses, `π/√12`.
 pub const MAX_TARGET_FRACTION: f64 = 0.7707;
 
 /// The most grains a scene may ask for, exactly or expected from its target fraction
@@ -154,9 +157,11 @@ pub struct Phase {
     pub name: String,
     /// Share of the total grain volume, in `(0, 1]`; the shares sum to 1.
     pub share: f64,
-    /// Equivalent-sphere diameter `d`: the grain's volume is `π d³/6`.
+    /// Equivalent-sphere diameter `d`: the grain's volume is `π d³/6`; in 2D the
+    /// equivalent-circle diameter, the ellipse's area being `π d²/4`.
     pub size: Distribution,
-    /// Aspect ratio `α = a1/a2` with `a2 = a3` (see [`GrainSpec`]).
+    /// Aspect ratio `α = a1/a2` with `a2 = a3` (see [`GrainSpec`]); of the ellipse's
+    /// semi-axes in 2D ([`GrainSpec::ellipse`]).
     pub aspect_ratio: Distribution,
     /// How the grains are oriented.
     pub orientation: Orientation,
@@ -174,12 +179,18 @@ pub struct Phase {
     /// Grains from a measured table (`[phase.measured]`); `None` for drawn phases.
     /// [`Phase::size`] is then the table's empirical law of diameters.
     pub measured: Option<Measured>,
+    /// Ellipsoids, or ellipses (the scene's box has two lengths): the grains drawn are
+    /// [`GrainSpec::ellipse`]s, their measure an area.
+    pub dimension: Dimension,
 }
 
 impl Phase {
-    /// Expected volume of one grain, `π E[d³]/6`.
+    /// Expected volume of one grain, `π E[d³]/6`; in 2D its expected area `π E[d²]/4`.
     pub fn expected_volume(&self) -> f64 {
-        PI / 6.0 * self.size.moment(3)
+        match self.dimension {
+            Dimension::Three => PI / 6.0 * self.size.moment(3),
+            Dimension::Two => PI / 4.0 * self.size.moment(2),
+        }
     }
 
     /// The longest any grain can be end to end: `d_max · max(α_max^{2/3}, α_min^{−1/3})`
@@ -188,6 +199,9 @@ impl Phase {
     ///
     /// Triaxial grains: the first axis `2a = d (βγ)^{−1/3}` at the largest `d` and the
     /// smallest `βγ` ([`Triaxial::min_product`]).
+    ///
+    /// Ellipses: `d_max · max(α_max^{1/2}, α_min^{−1/2})` (`2a1 = d α^{1/2}`,
+    /// `2a2 = d α^{−1/2}`).
     pub fn max_length(&self) -> f64 {
         let (_, d_max) = self.size.support();
         if let Some(m) = self.measured.as_ref().filter(|m| m.has_semi_axes()) {
@@ -201,6 +215,9 @@ impl Phase {
             return d_max / t.min_product().cbrt();
         }
         let (a_min, a_max) = self.aspect_ratio.support();
+        if self.dimension == Dimension::Two {
+            return d_max * a_max.sqrt().max(1.0 / a_min.sqrt());
+        }
         d_max * a_max.powf(2.0 / 3.0).max(a_min.powf(-1.0 / 3.0))
     }
 }

@@ -6,7 +6,7 @@
 //! [`GrainSpec`](super::GrainSpec)).
 
 use super::fisher::FisherOrientation;
-use crate::contact::rotation_column;
+use crate::contact::{ellipse_angle, rotation_column};
 use crate::laws::VonMises;
 use rand::Rng;
 use std::f64::consts::PI;
@@ -92,6 +92,30 @@ impl Orientation {
                 Some((tilt_quaternion(axis, theta), Some(theta)))
             }
             Self::Fisher(law) => Some((law.sample(rng)?, None)),
+        }
+    }
+}
+
+impl Orientation {
+    /// Draws a 2D grain's angle (radians, of its first semi-axis from x), and the tilt
+    /// angle for [`Orientation::Tilt`] (the same angle): uniform on a half turn for
+    /// `Random` (an ellipse turned by π is the same ellipse), the angle of the axis in
+    /// the x–y plane for `Aligned`, a von Mises draw for `Tilt` (about z, the only
+    /// tilt a 2D scene takes). A 2D scene refuses `Fisher`; a `Fixed` quaternion (about
+    /// z) gives its angle. `None` if the von Mises rejection sampling gave up.
+    pub fn sample_angle<R: Rng + ?Sized>(&self, rng: &mut R) -> Option<(f64, Option<f64>)> {
+        match *self {
+            Self::Random => Some((PI * (rng.random::<f64>() - 0.5), None)),
+            Self::Fixed { quaternion } => Some((ellipse_angle(quaternion), None)),
+            Self::Aligned { axis } => Some((axis[1].atan2(axis[0]), None)),
+            Self::Tilt { angle, .. } => {
+                let theta = angle.sample(rng)?;
+                Some((theta, Some(theta)))
+            }
+            Self::Fisher(law) => {
+                let e = rotation_column(law.sample(rng)?, 0);
+                Some((e[1].atan2(e[0]), None))
+            }
         }
     }
 }

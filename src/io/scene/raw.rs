@@ -80,7 +80,8 @@ pub(crate) enum RawTextureKind {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawBox {
-    pub size: Spanned<[f64; 3]>,
+    /// `[Lx, Ly, Lz]`, or `[Lx, Ly]` for a 2D scene: the count is checked by validation.
+    pub size: Spanned<Vec<f64>>,
     pub boundary: Opt<RawBoundary>,
 }
 
@@ -194,6 +195,8 @@ pub(crate) struct RawOrientation {
     pub spin_reference: Opt<toml::Value>,
     pub spin_kappa: Opt<f64>,
     pub spin_mean: Opt<f64>,
+    /// `kind = "aligned"` in a 2D scene: the grains' angle from x, in degrees.
+    pub angle: Opt<f64>,
 }
 
 /// `orientation.kind`.
@@ -205,6 +208,8 @@ pub(crate) enum RawKind {
     Aligned,
     Tilt,
     Fisher,
+    /// 2D scenes: a von Mises law of the angle (a tilt about z).
+    VonMises,
 }
 
 /// `[packing]`.

@@ -37,7 +37,7 @@ fn fuller(basis: TableBasis, interpolation: TableInterpolation) -> TableLaw {
 
 fn all_tables() -> Vec<TableLaw> {
     let mut v = Vec::new();
-    for b in [TableBasis::Number, TableBasis::Volume] {
+    for b in [TableBasis::Number, TableBasis::Volume, TableBasis::Area] {
         for i in [TableInterpolation::Linear, TableInterpolation::Log] {
             v.push(fuller(b, i));
         }
@@ -54,15 +54,17 @@ fn draws_follow_the_number_cdf() {
 }
 
 /// A sieve curve is a volume fraction passing: the volume-weighted CDF of the
-/// number law must give back the table's own curve at every point and between.
+/// number law must give back the table's own curve at every point and between; an
+/// area table (2D), the area-weighted one (`d²`).
 /// Exact formulas on both sides: 1e-12 allows the roundings of a few dozen powers.
 #[test]
-fn volume_tables_give_back_the_volume_fraction_passing() {
+fn volume_and_area_tables_give_back_the_fraction_passing() {
     for law in all_tables()
         .into_iter()
-        .filter(|l| l.basis == TableBasis::Volume)
+        .filter(|l| l.basis != TableBasis::Number)
     {
-        let total = law.moment(3);
+        let w = law.basis.weight_power();
+        let total = law.moment(w as u32);
         let (lo, _) = law.support();
         for x in [2.0, 3.0, 4.0, 6.5, 8.0, 10.0, 11.2, 15.0, 16.0] {
             // ∫_lo^x t³ n(t) dt by the exact per-interval powers.
@@ -74,7 +76,7 @@ fn volume_tables_give_back_the_volume_fraction_passing() {
                     break;
                 }
                 let m = law.number_cdf[i + 1] - law.number_cdf[i];
-                acc += m * power_integral(p + 3, a, b) / power_integral(p, law.x[i], law.x[i + 1]);
+                acc += m * power_integral(p + w, a, b) / power_integral(p, law.x[i], law.x[i + 1]);
             }
             let passing = acc / total;
             assert!(

@@ -2,7 +2,8 @@
 
 use super::super::error::{SceneError, Source};
 use super::super::raw::RawPacking;
-use crate::scene::{Phase, Scene, MAX_TARGET_FRACTION};
+use super::densest;
+use crate::scene::{Phase, Scene};
 use toml::Spanned;
 
 /// The gap as written: a finite number, at least 0.
@@ -20,7 +21,8 @@ pub(super) fn value(src: &Source, raw: &Spanned<f64>) -> Result<f64, SceneError>
 
 /// The grains are packed inflated by `1 + gap`, so the gap is too large to mean
 /// anything when the inflated grains could not be packed at all: when they would fill
-/// more of the box than the densest packing of ellipsoids ([`MAX_TARGET_FRACTION`]),
+/// more of the box than the densest packing of ellipsoids
+/// ([`MAX_TARGET_FRACTION`](crate::scene::MAX_TARGET_FRACTION); of ellipses in 2D),
 /// or when the longest of them would not fit in the box (it would meet its own
 /// periodic image, or both walls).
 pub(super) fn fits(
@@ -34,16 +36,18 @@ pub(super) fn fits(
     let gap = scene.packing.gap;
     let inflation = 1.0 + gap;
     let fraction = scene.expected_fraction();
-    let inflated = fraction * inflation.powi(3);
-    if inflated > MAX_TARGET_FRACTION {
-        let largest = (MAX_TARGET_FRACTION / fraction).cbrt() - 1.0;
+    let dimension = scene.domain.dimension;
+    let inflated = fraction * inflation.powi(dimension.exponent());
+    let (limit, grains) = densest(&scene.domain);
+    if inflated > limit {
+        let largest = dimension.length_scale(limit / fraction) - 1.0;
         return Err(src.invalid_at(
             "packing.gap",
             at,
             format!(
                 "the grains inflated by 1 + gap would fill {inflated:.3} of the box (the grains \
-                 fill {fraction:.3}), beyond the densest packing of ellipsoids \
-                 ({MAX_TARGET_FRACTION}): the gap can be at most {largest:.4} here"
+                 fill {fraction:.3}), beyond the densest packing of {grains} ({limit}): the gap \
+                 can be at most {largest:.4} here"
             ),
         ));
     }

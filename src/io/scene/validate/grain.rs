@@ -1,7 +1,7 @@
 //! A phase's grain statistics: size and aspect-ratio distributions, and orientation.
 
 use super::axis::{direction, named_axis};
-use crate::contact::QUATERNION_NORM_TOL;
+use crate::contact::{Dimension, QUATERNION_NORM_TOL};
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawDistribution, RawFamily, RawKind, RawOrientation};
 use crate::laws::VonMises;
@@ -11,15 +11,17 @@ use std::f64::consts::PI;
 use std::ops::Range;
 use toml::Spanned;
 
-/// `[phase.size]` or `[phase.aspect_ratio]` (at key path `key`).
+/// `[phase.size]` or `[phase.aspect_ratio]` (at key path `key`) of a scene in
+/// `dimension` (which decides what a table's `by` may be).
 pub(super) fn distribution(
     src: &Source,
     key: &str,
     raw: &Spanned<RawDistribution>,
+    dimension: Dimension,
 ) -> Result<Distribution, SceneError> {
     let r = raw.get_ref();
     if *r.distribution.get_ref() == RawFamily::Table {
-        return super::table::table(src, key, raw);
+        return super::table::table(src, key, raw, dimension);
     }
     if let Some((name, span)) = super::table::table_keys(r).into_iter().flatten().next() {
         return Err(src.invalid(
@@ -86,14 +88,25 @@ pub(super) fn distribution(
     Ok(d)
 }
 
-/// `[phase.orientation]` (at key path `key`).
+/// `[phase.orientation]` (at key path `key`) of a scene in `dimension`.
 pub(super) fn orientation(
     src: &Source,
     key: &str,
     raw: &Spanned<RawOrientation>,
+    dimension: Dimension,
 ) -> Result<Orientation, SceneError> {
+    if dimension == Dimension::Two {
+        return super::plane::orientation(src, key, raw);
+    }
     let o = raw.get_ref();
     let kind = *o.kind.get_ref();
+    if let Some(a) = &o.angle {
+        return Err(src.invalid_at(
+            format!("{key}.angle"),
+            a,
+            "applies only in a 2D scene (box.size = [Lx, Ly]); in 3D give axis",
+        ));
+    }
     let given: [(&str, Option<Range<usize>>); 10] = [
         ("quaternion", o.quaternion.as_ref().map(Spanned::span)),
         ("axis", o.axis.as_ref().map(Spanned::span)),
@@ -114,6 +127,14 @@ pub(super) fn orientation(
         RawKind::Fixed => ("fixed", &["quaternion"]),
         RawKind::Aligned => ("aligned", &["axis"]),
         RawKind::Tilt => ("tilt", &["axis", "mean", "kappa", "min", "max"]),
+        RawKind::VonMises => {
+            return Err(src.invalid_at(
+                format!("{key}.kind"),
+                &o.kind,
+                "\"vonmises\" is a 2D scene's law of the angle in the plane (box.size = \
+                 [Lx, Ly]); in 3D give kind = \"tilt\" with its axis",
+            ))
+        }
         RawKind::Fisher => (
             "fisher",
             &[
@@ -158,13 +179,20 @@ pub(super) fn orientation(
             };
             Ok(Orientation::Aligned { axis })
         }
-        RawKind::Tilt => tilt(src, key, raw),
+        RawKind::Tilt => tilt(src, key, raw, "tilt"),
         RawKind::Fisher => super::fisher::fisher(src, key, raw),
+        RawKind::VonMises => unreachable!("refused above"),
     }
 }
 
-/// The keys of `kind = "tilt"`, already checked to be the only ones given.
-fn tilt(src: &Source, key: &str, raw: &Spanned<RawOrientation>) -> Result<Orientation, SceneError> {
+/// The keys of `kind = "tilt"` (or `"vonmises"`, a 2D scene's tilt about z: `kind`),
+/// already checked to be the only ones given.
+pub(super) fn tilt(
+    src: &Source,
+    key: &str,
+    raw: &Spanned<RawOrientation>,
+    kind: &str,
+) -> Result<Orientation, SceneError> {
     let o = raw.get_ref();
     let axis = match &o.axis {
         None => Axis::Z,
@@ -180,7 +208,7 @@ fn tilt(src: &Source, key: &str, raw: &Spanned<RawOrientation>) -> Result<Orient
         src.missing(
             format!("{key}.kappa"),
             raw.span(),
-            "kind = \"tilt\" needs kappa (0 for uniform)",
+            format!("kind = \"{kind}\" needs kappa (0 for uniform)"),
         )
     })?;
     let radians = |v: &Option<Spanned<f64>>| v.as_ref().map(|v| v.get_ref().to_radians());

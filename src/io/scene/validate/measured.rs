@@ -7,8 +7,13 @@
 //! (unit quaternion, scalar first) or else `phi1`, `Phi`, `phi2` (Bunge Euler angles,
 //! degrees). Other columns (`id`, `x`, `y`, `z`, ...) are ignored, so a `grains.csv`
 //! written by `pack` reads back as it is, crystal orientations included.
+//!
+//! A 2D scene's table is of ellipses: `d` (equivalent-circle diameter) or `a1`, `a2`
+//! (semi-axes), and optionally `angle` (of `a1` from x, degrees) instead of the
+//! quaternion; `a3` and `qw..qz` are refused there, and `angle` or `a1`, `a2` without
+//! `a3` in a 3D scene.
 
-use crate::contact::QUATERNION_NORM_TOL;
+use crate::contact::{ellipse_quaternion, ellipse_semi_axes, Dimension, QUATERNION_NORM_TOL};
 use crate::io::scene::error::{DataFileError, SceneError, Source};
 use crate::io::scene::raw::RawMeasured;
 use crate::laws::{Distribution, EmpiricalLaw};
@@ -22,6 +27,7 @@ pub(super) fn measured(
     src: &Source,
     key: &str,
     raw: &Spanned<RawMeasured>,
+    dimension: Dimension,
 ) -> Result<(Measured, Distribution), SceneError> {
     let r = raw.get_ref();
     let file = r.file.get_ref();
@@ -62,8 +68,8 @@ pub(super) fn measured(
         )
     })?;
     let table_file = path.display().to_string();
-    let grains =
-        read_table(&text, select.as_deref()).map_err(|(line, column, value, reason)| {
+    let grains = read_table(&text, select.as_deref(), dimension).map_err(
+        |(line, column, value, reason)| {
             SceneError::DataFile(Box::new(DataFileError {
                 file: src.file.to_owned(),
                 key: format!("{key}.file"),
@@ -73,7 +79,8 @@ pub(super) fn measured(
                 value,
                 reason,
             }))
-        })?;
+        },
+    )?;
     if grains.is_empty() {
         return Err(src.invalid_at(
             format!("{key}.file"),
@@ -90,6 +97,7 @@ pub(super) fn measured(
         Measured {
             grains: grains.into(),
             mode,
+            dimension,
         },
         size,
     ))
@@ -103,8 +111,12 @@ const UNIT_ROUNDING: f64 = 8.0 * f64::EPSILON;
 /// A bad cell: line (1-based), column name, value, reason.
 type Bad = (usize, String, String, String);
 
-/// Reads the table's rows (of phase `select`, if given).
-fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Bad> {
+/// Reads the table's rows (of phase `select`, if given), of ellipsoids or ellipses.
+fn read_table(
+    text: &str,
+    select: Option<&str>,
+    dimension: Dimension,
+) -> Result<Vec<MeasuredGrain>, Bad> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .from_reader(text.as_bytes());
@@ -123,38 +135,11 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
             reason.to_owned(),
         )
     };
+    check_dimension(&header, dimension).map_err(|e| bad_header(&e))?;
     let d = find("d");
-    let axes: Vec<Option<usize>> = ["a1", "a2", "a3"].iter().map(|n| find(n)).collect();
-    let quat: Vec<Option<usize>> = ["qw", "qx", "qy", "qz"].iter().map(|n| find(n)).collect();
-    let axes = match (
-        d,
-        axes.iter().all(Option::is_some),
-        axes.iter().any(Option::is_some),
-    ) {
-        (Some(_), _, true) => {
-            return Err(bad_header("give d or a1, a2, a3, not both"));
-        }
-        (None, true, _) => Some([axes[0].unwrap(), axes[1].unwrap(), axes[2].unwrap()]),
-        (None, false, true) => return Err(bad_header("a1, a2 and a3 go together")),
-        (None, false, false) => {
-            return Err(bad_header(
-                "needs a column d (equivalent diameter) or a1, a2, a3 (semi-axes)",
-            ))
-        }
-        (Some(_), _, false) => None,
-    };
-    let quat = match (
-        quat.iter().all(Option::is_some),
-        quat.iter().any(Option::is_some),
-    ) {
-        (true, _) => Some([
-            quat[0].unwrap(),
-            quat[1].unwrap(),
-            quat[2].unwrap(),
-            quat[3].unwrap(),
-        ]),
-        (false, true) => return Err(bad_header("qw, qx, qy and qz go together")),
-        (false, false) => None,
+    let (shape, turn) = match dimension {
+        Dimension::Three => three_columns(&header, d).map_err(|e| bad_header(&e))?,
+        Dimension::Two => two_columns(&header, d).map_err(|e| bad_header(&e))?,
     };
     // Crystal orientations: o0..o3 (a unit quaternion, as pack writes them), else
     // phi1, Phi, phi2 (Bunge Euler angles in degrees).
@@ -181,41 +166,19 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
                 continue;
             }
         }
-        let number = |c: usize| -> Result<f64, Bad> {
-            let cell = record.get(c).unwrap_or("");
-            cell.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| {
-                    (
-                        line,
-                        header[c].clone(),
-                        cell.into(),
-                        "not a finite number".into(),
-                    )
-                })
+        let cell = Cell {
+            record: &record,
+            header: &header,
+            line,
         };
-        let positive = |c: usize| -> Result<f64, Bad> {
-            let v = number(c)?;
-            if v > 0.0 {
-                Ok(v)
-            } else {
-                Err((
-                    line,
-                    header[c].clone(),
-                    v.to_string(),
-                    "must be positive".into(),
-                ))
-            }
-        };
-        let q = match quat {
-            None => None,
-            Some(cols) => {
+        let q = match turn {
+            Turn::None => None,
+            Turn::Quaternion(c) => {
                 let q = [
-                    number(cols[0])?,
-                    number(cols[1])?,
-                    number(cols[2])?,
-                    number(cols[3])?,
+                    cell.number(c[0])?,
+                    cell.number(c[1])?,
+                    cell.number(c[2])?,
+                    cell.number(c[3])?,
                 ];
                 let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
                 if !((norm - 1.0).abs() <= QUATERNION_NORM_TOL) {
@@ -229,49 +192,45 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
                         ),
                     ));
                 }
-                // Within rounding of unit norm, kept as written: the round trip of a
-                // grains.csv is then exact.
-                if (norm - 1.0).abs() <= UNIT_ROUNDING {
-                    Some(q)
-                } else {
-                    Some(q.map(|v| v / norm))
-                }
+                Some(cell.unit(q, "qw")?)
             }
-        };
-        let unit = |q: [f64; 4], name: &str| -> Result<[f64; 4], Bad> {
-            let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
-            if !((norm - 1.0).abs() <= QUATERNION_NORM_TOL) {
-                return Err((
-                    line,
-                    name.into(),
-                    format!("[{}, {}, {}, {}]", q[0], q[1], q[2], q[3]),
-                    format!("must be a unit quaternion (norm {norm}, tolerance {QUATERNION_NORM_TOL:e})"),
-                ));
-            }
-            // Within rounding of unit norm, kept as written (an exact round trip).
-            Ok(if (norm - 1.0).abs() <= UNIT_ROUNDING {
-                q
-            } else {
-                q.map(|v| v / norm)
-            })
+            Turn::Angle(c) => Some(ellipse_quaternion(cell.number(c)?.to_radians())),
         };
         let crystal = match (crystal_quat, euler) {
-            (Some(c), _) => Some(unit(
-                [number(c[0])?, number(c[1])?, number(c[2])?, number(c[3])?],
+            (Some(c), _) => Some(cell.unit(
+                [
+                    cell.number(c[0])?,
+                    cell.number(c[1])?,
+                    cell.number(c[2])?,
+                    cell.number(c[3])?,
+                ],
                 "o0",
             )?),
             (None, Some(c)) => Some(euler_to_quaternion(
-                [number(c[0])?, number(c[1])?, number(c[2])?].map(f64::to_radians),
+                [cell.number(c[0])?, cell.number(c[1])?, cell.number(c[2])?].map(f64::to_radians),
             )),
             (None, None) => None,
         };
-        let mut grain = match axes {
-            Some(cols) => MeasuredGrain::with_semi_axes(
-                [positive(cols[0])?, positive(cols[1])?, positive(cols[2])?],
+        let mut grain = match shape {
+            Shape::Ellipsoid(c) => MeasuredGrain::with_semi_axes(
+                [
+                    cell.positive(c[0])?,
+                    cell.positive(c[1])?,
+                    cell.positive(c[2])?,
+                ],
                 q,
             ),
-            None => MeasuredGrain {
-                diameter: positive(d.expect("d or semi-axes"))?,
+            Shape::Ellipse(c) => {
+                let axes = ellipse_semi_axes(cell.positive(c[0])?, cell.positive(c[1])?);
+                MeasuredGrain {
+                    diameter: Dimension::Two.equivalent_diameter(axes),
+                    semi_axes: Some(axes),
+                    quaternion: q,
+                    crystal: None,
+                }
+            }
+            Shape::Diameter(c) => MeasuredGrain {
+                diameter: cell.positive(c)?,
                 semi_axes: None,
                 quaternion: q,
                 crystal: None,
@@ -281,6 +240,146 @@ fn read_table(text: &str, select: Option<&str>) -> Result<Vec<MeasuredGrain>, Ba
         grains.push(grain);
     }
     Ok(grains)
+}
+
+/// Where a table gives a grain's size: its diameter, or its semi-axes.
+#[derive(Clone, Copy)]
+enum Shape {
+    Diameter(usize),
+    Ellipsoid([usize; 3]),
+    Ellipse([usize; 2]),
+}
+
+/// Where a table gives a grain's orientation, if it does.
+#[derive(Clone, Copy)]
+enum Turn {
+    None,
+    Quaternion([usize; 4]),
+    /// An ellipse's angle from x, in degrees.
+    Angle(usize),
+}
+
+/// The size and orientation columns of a 3D table: `d` or `a1, a2, a3`; `qw..qz`.
+fn three_columns(header: &[String], d: Option<usize>) -> Result<(Shape, Turn), String> {
+    let shape = match (d, columns(header, &["a1", "a2", "a3"])) {
+        (Some(_), Ok(Some(_)) | Err(_)) => return Err("give d or a1, a2, a3, not both".into()),
+        (None, Err(_)) => return Err("a1, a2 and a3 go together".into()),
+        (None, Ok(None)) => {
+            return Err("needs a column d (equivalent diameter) or a1, a2, a3 (semi-axes)".into())
+        }
+        (None, Ok(Some(c))) => Shape::Ellipsoid(c),
+        (Some(c), Ok(None)) => Shape::Diameter(c),
+    };
+    let turn = match columns(header, &["qw", "qx", "qy", "qz"]) {
+        Ok(Some(c)) => Turn::Quaternion(c),
+        Ok(None) => Turn::None,
+        Err(_) => return Err("qw, qx, qy and qz go together".into()),
+    };
+    Ok((shape, turn))
+}
+
+/// The size and orientation columns of a 2D table: `d` (the equivalent-circle
+/// diameter) or `a1, a2`; `angle`.
+fn two_columns(header: &[String], d: Option<usize>) -> Result<(Shape, Turn), String> {
+    let shape = match (d, columns(header, &["a1", "a2"])?) {
+        (Some(_), Some(_)) => return Err("give d or a1, a2, not both".into()),
+        (None, None) => {
+            return Err(
+                "needs a column d (equivalent-circle diameter) or a1, a2 (semi-axes)".into(),
+            )
+        }
+        (None, Some(c)) => Shape::Ellipse(c),
+        (Some(c), None) => Shape::Diameter(c),
+    };
+    let turn = match header.iter().position(|h| h == "angle") {
+        Some(c) => Turn::Angle(c),
+        None => Turn::None,
+    };
+    Ok((shape, turn))
+}
+
+/// The columns that belong to the other dimension's tables, refused: `a3` and
+/// `qw..qz` in a 2D scene; `angle`, or `a1`, `a2` without `a3`, in a 3D one.
+fn check_dimension(header: &[String], dimension: Dimension) -> Result<(), String> {
+    let has = |name: &str| header.iter().any(|h| h == name);
+    match dimension {
+        Dimension::Two => match ["a3", "qw", "qx", "qy", "qz"].into_iter().find(|c| has(c)) {
+            Some("a3") => Err("a3 has no meaning in a 2D scene (box.size = [Lx, Ly]): an \
+                               ellipse's table gives d or a1, a2"
+                .into()),
+            Some(c) => Err(format!(
+                "{c} has no meaning in a 2D scene (box.size = [Lx, Ly]): an ellipse's table \
+                 gives its orientation as angle (degrees from x)"
+            )),
+            None => Ok(()),
+        },
+        Dimension::Three if has("angle") || (has("a1") && has("a2") && !has("a3")) => Err(
+            "is a 2D table of ellipses (angle, or a1, a2 without a3), but the scene's box has \
+             three lengths: give box.size = [Lx, Ly], or a3 and qw, qx, qy, qz"
+                .into(),
+        ),
+        Dimension::Three => Ok(()),
+    }
+}
+
+/// One row's cells, read as numbers with errors naming line and column.
+struct Cell<'a> {
+    record: &'a csv::StringRecord,
+    header: &'a [String],
+    line: usize,
+}
+
+impl Cell<'_> {
+    fn number(&self, c: usize) -> Result<f64, Bad> {
+        let cell = self.record.get(c).unwrap_or("");
+        cell.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| {
+                (
+                    self.line,
+                    self.header[c].clone(),
+                    cell.into(),
+                    "not a finite number".into(),
+                )
+            })
+    }
+
+    fn positive(&self, c: usize) -> Result<f64, Bad> {
+        let v = self.number(c)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err((
+                self.line,
+                self.header[c].clone(),
+                v.to_string(),
+                "must be positive".into(),
+            ))
+        }
+    }
+
+    /// `q` as a unit quaternion (column `name` blamed): kept as written within
+    /// rounding of unit norm (a `grains.csv` then reads back exactly), normalised
+    /// within [`QUATERNION_NORM_TOL`].
+    fn unit(&self, q: [f64; 4], name: &str) -> Result<[f64; 4], Bad> {
+        let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !((norm - 1.0).abs() <= QUATERNION_NORM_TOL) {
+            return Err((
+                self.line,
+                name.into(),
+                format!("[{}, {}, {}, {}]", q[0], q[1], q[2], q[3]),
+                format!(
+                    "must be a unit quaternion (norm {norm}, tolerance {QUATERNION_NORM_TOL:e})"
+                ),
+            ));
+        }
+        Ok(if (norm - 1.0).abs() <= UNIT_ROUNDING {
+            q
+        } else {
+            q.map(|v| v / norm)
+        })
+    }
 }
 
 /// The positions of the columns `names` in `header`: all of them, or `None` if none
@@ -306,20 +405,28 @@ mod tests {
     #[test]
     fn bad_cells_name_line_and_column() {
         let text = "id,d\n0,3.0\n1,-2.0\n";
-        let err = read_table(text, None).unwrap_err();
+        let err = read_table(text, None, Dimension::Three).unwrap_err();
         assert_eq!((err.0, err.1.as_str()), (3, "d"));
         let text = "a1,a2,a3,qw,qx,qy,qz\n3,2,1,1,0,0,0\n3,2,x,1,0,0,0\n";
-        let err = read_table(text, None).unwrap_err();
+        let err = read_table(text, None, Dimension::Three).unwrap_err();
         assert_eq!((err.0, err.1.as_str(), err.2.as_str()), (3, "a3", "x"));
         let text = "a1,a2,a3,qw,qx,qy,qz\n3,2,1,0.5,0,0,0\n";
-        assert_eq!(read_table(text, None).unwrap_err().1, "qw");
-        assert_eq!(read_table("x,y\n1,2\n", None).unwrap_err().0, 1);
+        assert_eq!(
+            read_table(text, None, Dimension::Three).unwrap_err().1,
+            "qw"
+        );
+        assert_eq!(
+            read_table("x,y\n1,2\n", None, Dimension::Three)
+                .unwrap_err()
+                .0,
+            1
+        );
     }
 
     #[test]
     fn rows_are_selected_by_phase_and_keep_their_values() {
         let text = "id,phase,a1,a2,a3\n0,0,3,2,1\n1,1,4,4,4\n2,0,2,2,2\n";
-        let g = read_table(text, Some("0")).unwrap();
+        let g = read_table(text, Some("0"), Dimension::Three).unwrap();
         assert_eq!(g.len(), 2);
         assert_eq!(g[0].semi_axes, Some([3.0, 2.0, 1.0]));
         // 2 (a1 a2 a3)^{1/3} = 2·6^{1/3}, to an ulp or two of the cube root.

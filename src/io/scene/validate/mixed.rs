@@ -10,9 +10,10 @@
 //! scales the given box to `V_g / φ`; without it the box is as given. `grains = N`
 //! cannot be honoured (the drawn count follows from the volumes) and is an error.
 
+use super::densest;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::RawScene;
-use crate::scene::{Domain, GrainCount, Measured, MeasuredMode, Phase, MAX_TARGET_FRACTION};
+use crate::scene::{Domain, GrainCount, Measured, MeasuredMode, Phase};
 
 /// Whether `phase` takes exactly its measured grains.
 pub(super) fn is_exact(phase: &Phase) -> bool {
@@ -111,17 +112,18 @@ pub(super) fn sized_box(
         }
         Ok(())
     };
+    let (limit, grains) = densest(&domain);
     match &raw.target_fraction {
         Some(f) => {
             let phi = *f.get_ref();
-            if !(phi > 0.0 && phi <= MAX_TARGET_FRACTION) {
+            if !(phi > 0.0 && phi <= limit) {
                 return Err(src.invalid_at(
                     "target_fraction",
                     f,
-                    format!("must lie in (0, {MAX_TARGET_FRACTION}]"),
+                    format!("must lie in (0, {limit}]"),
                 ));
             }
-            let scale = (volume / (phi * domain.volume())).cbrt();
+            let scale = (domain.dimension).length_scale(volume / (phi * domain.volume()));
             let scaled = Domain {
                 size: domain.size.map(|l| l * scale),
                 ..domain
@@ -133,14 +135,14 @@ pub(super) fn sized_box(
             let at = raw.domain.get_ref().size.span();
             fits(&domain, at.clone(), "box.size")?;
             let phi = volume / domain.volume();
-            if phi > MAX_TARGET_FRACTION {
+            if phi > limit {
                 return Err(src.invalid(
                     "box.size",
                     at,
                     format!(
                         "the measured grains fill {phi:.3} of this box, beyond the densest \
-                         packing of ellipsoids ({MAX_TARGET_FRACTION}); enlarge the box or \
-                         give target_fraction to size it"
+                         packing of {grains} ({limit}); enlarge the box or give \
+                         target_fraction to size it"
                     ),
                 ));
             }

@@ -8,6 +8,7 @@ mod grain;
 mod measured;
 mod mixed;
 mod output;
+mod plane;
 mod solver;
 mod table;
 mod texture;
@@ -16,6 +17,7 @@ mod units;
 
 use super::error::{SceneError, Source};
 use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
+use crate::contact::Dimension;
 use crate::laws::Distribution;
 use crate::scene::{
     mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase,
@@ -24,6 +26,7 @@ use crate::scene::{
 use grain::{distribution, orientation};
 use serde::Deserialize;
 use std::collections::HashSet;
+use std::ops::Range;
 use toml::de::{DeTable, Deserializer};
 use toml::Spanned;
 
@@ -86,7 +89,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         count,
         domain,
         phases,
-        packing: packing(&src, raw.packing.as_ref())?,
+        packing: packing(&src, raw.packing.as_ref(), domain.dimension)?,
         homogenization: solver::homogenization(&src, &raw, &output)?,
         output,
         matrix,
@@ -99,7 +102,18 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
 
 fn domain(src: &Source, raw: &Spanned<RawBox>) -> Result<Domain, SceneError> {
     let raw = raw.get_ref();
-    let size = *raw.size.get_ref();
+    let size = raw.size.get_ref();
+    if !(size.len() == 2 || size.len() == 3) {
+        return Err(src.invalid_at(
+            "box.size",
+            &raw.size,
+            format!(
+                "must be [Lx, Ly, Lz] (a box of ellipsoids) or [Lx, Ly] (a 2D scene: a \
+                 rectangle of ellipses), not {} lengths",
+                size.len()
+            ),
+        ));
+    }
     if !size.iter().all(|l| l.is_finite() && *l > 0.0) {
         return Err(src.invalid_at(
             "box.size",
@@ -111,7 +125,33 @@ fn domain(src: &Source, raw: &Spanned<RawBox>) -> Result<Domain, SceneError> {
         None | Some(RawBoundary::Periodic) => Boundary::Periodic,
         Some(RawBoundary::Reflecting) => Boundary::Reflecting,
     };
-    Ok(Domain::new(size, boundary))
+    Ok(match *size.as_slice() {
+        [x, y] => Domain::plane([x, y], boundary),
+        _ => Domain::new([size[0], size[1], size[2]], boundary),
+    })
+}
+
+/// The error of a key that has no meaning in a 2D scene, saying why.
+pub(super) fn not_in_2d(
+    src: &Source,
+    key: impl Into<String>,
+    at: Range<usize>,
+    why: &str,
+) -> SceneError {
+    src.invalid(
+        key,
+        at,
+        format!("has no meaning in a 2D scene (box.size = [Lx, Ly]): {why}"),
+    )
+}
+
+/// The densest packing of the scene's grains (ellipsoids or ellipses), as the limit of
+/// `target_fraction`, and their name for messages: [`MAX_TARGET_FRACTION`] in 3D.
+pub(super) fn densest(domain: &Domain) -> (f64, &'static str) {
+    match domain.dimension {
+        Dimension::Three => (MAX_TARGET_FRACTION, "ellipsoids"),
+        Dimension::Two => (Dimension::Two.densest_fraction(), "ellipses"),
+    }
 }
 
 fn phase(
@@ -137,6 +177,21 @@ fn phase(
             return Err(src.invalid_at(format!("{key}.share"), s, "must be positive and finite"))
         }
     };
+    if domain.dimension == Dimension::Two {
+        let triaxial = [
+            ("b_over_a", &p.b_over_a),
+            ("c_over_a", &p.c_over_a),
+            ("c_over_b", &p.c_over_b),
+        ];
+        if let Some((name, Some(v))) = triaxial.into_iter().find(|(_, v)| v.is_some()) {
+            return Err(not_in_2d(
+                src,
+                format!("{key}.{name}"),
+                v.span(),
+                "an ellipse has two semi-axes; give aspect_ratio (a1/a2)",
+            ));
+        }
+    }
     let (measured, size) = match (&p.measured, &p.size) {
         (Some(_), Some(s)) => {
             return Err(src.invalid_at(
@@ -146,10 +201,14 @@ fn phase(
             ))
         }
         (Some(m), None) => {
-            let (m, size) = measured::measured(src, &format!("{key}.measured"), m)?;
+            let (m, size) =
+                measured::measured(src, &format!("{key}.measured"), m, domain.dimension)?;
             (Some(m), size)
         }
-        (None, Some(s)) => (None, distribution(src, &format!("{key}.size"), s)?),
+        (None, Some(s)) => (
+            None,
+            distribution(src, &format!("{key}.size"), s, domain.dimension)?,
+        ),
         (None, None) => {
             return Err(src.missing(
                 format!("{key}.size"),
@@ -193,11 +252,11 @@ fn phase(
     }
     let aspect_ratio = match &p.aspect_ratio {
         None => Distribution::Constant { value: 1.0 },
-        Some(a) => distribution(src, &format!("{key}.aspect_ratio"), a)?,
+        Some(a) => distribution(src, &format!("{key}.aspect_ratio"), a, domain.dimension)?,
     };
     let orientation = match &p.orientation {
         None => Orientation::Random,
-        Some(o) => orientation(src, &format!("{key}.orientation"), o)?,
+        Some(o) => orientation(src, &format!("{key}.orientation"), o, domain.dimension)?,
     };
     let spherical = aspect_ratio == Distribution::Constant { value: 1.0 };
     let texture = match &p.texture {
@@ -223,6 +282,7 @@ fn phase(
         damask: p.damask.as_ref().map(|d| d.get_ref().clone()),
         triaxial: triaxial::triaxial(src, &key, p)?,
         measured,
+        dimension: domain.dimension,
     };
 
     let (longest, side) = (phase.max_length(), domain.min_side());
@@ -269,6 +329,7 @@ fn count(
 ) -> Result<GrainCount, SceneError> {
     let v_grain = mean_grain_volume(phases);
     let v_box = domain.volume();
+    let (densest, grains) = densest(domain);
     match (&raw.grains, &raw.target_fraction) {
         (Some(_), Some(f)) => Err(src.invalid_at(
             "target_fraction",
@@ -284,13 +345,13 @@ fn count(
                 return Err(src.invalid_at("grains", n, format!("must lie in [1, {MAX_GRAINS}]")));
             }
             let fraction = count as f64 * v_grain / v_box;
-            if fraction > MAX_TARGET_FRACTION {
+            if fraction > densest {
                 return Err(src.invalid_at(
                     "grains",
                     n,
                     format!(
                         "that many grains fill an expected {fraction:.3} of the box, beyond the \
-                         densest packing of ellipsoids ({MAX_TARGET_FRACTION})"
+                         densest packing of {grains} ({densest})"
                     ),
                 ));
             }
@@ -298,13 +359,13 @@ fn count(
         }
         (None, Some(f)) => {
             let fraction = *f.get_ref();
-            if !(fraction > 0.0 && fraction <= MAX_TARGET_FRACTION) {
+            if !(fraction > 0.0 && fraction <= densest) {
                 return Err(src.invalid_at(
                     "target_fraction",
                     f,
                     format!(
-                        "must lie in (0, {MAX_TARGET_FRACTION}]: {MAX_TARGET_FRACTION} is the densest \
-                         known packing of ellipsoids"
+                        "must lie in (0, {densest}]: {densest} is the densest known packing of \
+                         {grains}"
                     ),
                 ));
             }
@@ -321,7 +382,11 @@ fn count(
     }
 }
 
-fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingParams, SceneError> {
+fn packing(
+    src: &Source,
+    raw: Option<&Spanned<RawPacking>>,
+    dimension: Dimension,
+) -> Result<PackingParams, SceneError> {
     let mut params = PackingParams::default();
     let Some(raw) = raw.map(Spanned::get_ref) else {
         return Ok(params);
@@ -348,6 +413,14 @@ fn packing(src: &Source, raw: Option<&Spanned<RawPacking>>) -> Result<PackingPar
         params.rotation = match v.get_ref() {
             toml::Value::Boolean(false) => Rotation::None,
             toml::Value::Boolean(true) => Rotation::Free,
+            toml::Value::String(s) if s == "axis" && dimension == Dimension::Two => {
+                return Err(not_in_2d(
+                    src,
+                    "packing.rotation",
+                    v.span(),
+                    "every grain in the plane turns about z; give true (turn) or false",
+                ))
+            }
             toml::Value::String(s) if s == "axis" => Rotation::Axis,
             _ => {
                 return Err(src.invalid_at(

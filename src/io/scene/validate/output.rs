@@ -1,6 +1,7 @@
 //! `[output]` → [`OutputSpec`]: defaults filled in, the RVE's cells resolved against
 //! the box, and every key that cannot take effect rejected rather than ignored.
 
+use super::not_in_2d;
 use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawFill, RawOutput};
@@ -155,16 +156,28 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
         None | Some(RawFill::Grains) => RveFill::Grains,
         Some(RawFill::Matrix) => RveFill::Matrix,
     };
+    // A 2D RVE is one cell thick: it is its own section.
+    let sections_png = match (&raw.sections_png, domain.dimension) {
+        (Some(v), Dimension::Two) if *v.get_ref() => {
+            return Err(not_in_2d(
+                src,
+                "output.sections_png",
+                v.span(),
+                "the RVE of a 2D scene is one cell thick, its own section",
+            ))
+        }
+        (_, Dimension::Two) => false,
+        (v, Dimension::Three) => v.as_ref().is_none_or(|v| *v.get_ref()),
+    };
     Ok(Some(RveSpec {
         cells,
         fill,
-        sections_png: raw.sections_png.as_ref().is_none_or(|v| *v.get_ref()),
+        sections_png,
     }))
 }
 
 /// `rve_resolution = N` (N cells along the longest edge, proportionally many along
-/// the others) or `[nx, ny, nz]`; in 2D `N` along the rectangle's longer side or
-/// `[nx, ny]`, and always one layer along z.
+/// the others) or `[nx, ny, nz]`; `[nx, ny]` in a 2D scene (one cell along z).
 fn resolution(
     src: &Source,
     raw: &Spanned<toml::Value>,
@@ -176,22 +189,26 @@ fn resolution(
         toml::Value::Integer(n) if (1..=limit).contains(n) => Some(*n as usize),
         _ => None,
     };
-    let plane = domain.dimension == Dimension::Two;
-    let shape = if plane {
-        format!(
-            "must be an integer or an array of two integers [nx, ny] (a 2D scene has one \
-             layer of cells along z), each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
-        )
-    } else {
-        format!(
-            "must be an integer or an array of three integers, each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
-        )
+    let (edges, shape) = match domain.dimension {
+        Dimension::Three => (
+            3,
+            format!(
+                "must be an integer or an array of three integers, each in [1, \
+                 {MAX_RVE_CELLS_PER_EDGE}]"
+            ),
+        ),
+        Dimension::Two => (
+            2,
+            format!(
+                "must be an integer or an array of two integers [nx, ny] (a 2D scene's RVE is \
+                 one cell thick), each in [1, {MAX_RVE_CELLS_PER_EDGE}]"
+            ),
+        ),
     };
-    let axes = if plane { 2 } else { 3 };
     match raw.get_ref() {
-        toml::Value::Array(items) if items.len() == axes => {
+        toml::Value::Array(items) if items.len() == edges => {
             let mut cells: Vec<usize> = items.iter().filter_map(edge).collect();
-            if plane && cells.len() == 2 {
+            if edges == 2 && cells.len() == 2 {
                 cells.push(1);
             }
             <[usize; 3]>::try_from(cells).map_err(|_| src.invalid_at(key, raw, shape))
@@ -203,14 +220,14 @@ fn resolution(
     }
 }
 
-/// `rve_voxel_size = h`: `round(L/h)` cells along each edge, at least 1; in 2D along
-/// the rectangle's two, and one layer along z.
+/// `rve_voxel_size = h`: `round(L/h)` cells along each edge, at least 1.
 fn voxel_size(src: &Source, raw: &Spanned<f64>, domain: &Domain) -> Result<[usize; 3], SceneError> {
     let key = "output.rve_voxel_size";
     let h = *raw.get_ref();
     if !(h.is_finite() && h > 0.0) {
         return Err(src.invalid_at(key, raw, "must be positive and finite"));
     }
+    // One cell along z in 2D.
     let mut cells = [1; 3];
     for (i, (&l, n)) in domain.sides().iter().zip(&mut cells).enumerate() {
         let count = (l / h).round().max(1.0);

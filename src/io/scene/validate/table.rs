@@ -1,5 +1,6 @@
 //! `distribution = "table"`: a tabulated CDF by number or by volume.
 
+use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::RawDistribution;
 use crate::laws::{Distribution, TableBasis, TableError, TableInterpolation, TableLaw};
@@ -18,12 +19,14 @@ pub(super) fn table_keys(r: &RawDistribution) -> [Option<(&'static str, Range<us
     ]
 }
 
-/// `distribution = "table"`: `x`, `cdf`, `by` (`"number"`, default, or `"volume"`),
-/// `interpolation` (`"linear"`, default, or `"log"`).
+/// `distribution = "table"`: `x`, `cdf`, `by` (`"number"`, default, or `"volume"`;
+/// `"area"` instead of `"volume"` in a 2D scene), `interpolation` (`"linear"`, default,
+/// or `"log"`).
 pub(super) fn table(
     src: &Source,
     key: &str,
     raw: &Spanned<RawDistribution>,
+    dimension: Dimension,
 ) -> Result<Distribution, SceneError> {
     let r = raw.get_ref();
     if let Some((name, Some(v))) = r.params().into_iter().find(|(_, v)| v.is_some()) {
@@ -55,10 +58,46 @@ pub(super) fn table(
         match r.by.as_ref() {
             None => TableBasis::Number,
             Some(b) => {
+                let measure = match dimension {
+                    Dimension::Three => "volume",
+                    Dimension::Two => "area",
+                };
                 match b.get_ref().as_str() {
                     "number" => TableBasis::Number,
+                    "volume" | "area" if b.get_ref() != measure => {
+                        return Err(src.invalid_at(
+                            format!("{key}.by"),
+                            b,
+                            match dimension {
+                                Dimension::Two => {
+                                    "has no meaning in a 2D scene (box.size = [Lx, \
+                                 Ly]): its grains have areas; give by = \"area\" (area fraction \
+                                 passing x)"
+                                }
+                                Dimension::Three => {
+                                    "by = \"area\" applies to 2D scenes (box.size \
+                                 = [Lx, Ly]); give by = \"volume\" (volume fraction passing x)"
+                                }
+                            },
+                        ))
+                    }
+                    "area" if key.ends_with(".size") => TableBasis::Area,
                     // A volume fraction weighs grains by d³: it means something for sizes only.
                     "volume" if key.ends_with(".size") => TableBasis::Volume,
+                    "area" => return Err(src.invalid_at(
+                        format!("{key}.by"),
+                        b,
+                        "by = \"area\" applies to size only (an area fraction weighs grains by \
+                         their diameter squared); a shape ratio's table is by number",
+                    )),
+                    _ if dimension == Dimension::Two => {
+                        return Err(src.invalid_at(
+                            format!("{key}.by"),
+                            b,
+                            "must be \"number\" (fraction of grains below x) or \"area\" (area \
+                         fraction passing x)",
+                        ))
+                    }
                     "volume" => return Err(src.invalid_at(
                         format!("{key}.by"),
                         b,

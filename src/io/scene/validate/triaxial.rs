@@ -1,6 +1,7 @@
 //! Triaxial shape laws: `b_over_a` with `c_over_a` or `c_over_b`.
 
 use super::grain::distribution;
+use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawDistribution, RawPhase};
 use crate::scene::{ThirdRatio, Triaxial};
@@ -34,7 +35,7 @@ pub(super) fn triaxial(
         ));
     }
     let ratio = |name: &str, raw: &Spanned<RawDistribution>| {
-        let law = distribution(src, &format!("{key}.{name}"), raw)?;
+        let law = distribution(src, &format!("{key}.{name}"), raw, Dimension::Three)?;
         let (_, max) = law.support();
         if max > 1.0 {
             return Err(src.invalid_at(

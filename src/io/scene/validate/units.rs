@@ -49,20 +49,22 @@ pub(super) fn warnings(src: &Source, raw: &RawScene, units: Units, domain: &Doma
     let (lo, hi) = PLAUSIBLE_BOX_M;
     let length = units.length.symbol();
     let size = &raw.domain.get_ref().size;
-    let metres = domain.size.map(|side| units.length.to_si(side));
+    // The rectangle's two sides in 2D.
+    let sides = domain.sides();
+    let metres: Vec<f64> = sides.iter().map(|&side| units.length.to_si(side)).collect();
     if metres.iter().any(|m| !(lo..=hi).contains(m)) {
         out.push(warning(
             src,
             "box.size",
             size.span(),
             format!(
-                "{:?} {length}{}, outside [{lo:e}, {hi:e}] m: is units.length \
+                "{sides:?} {length}{}, outside [{lo:e}, {hi:e}] m: is units.length \
                  (\"{length}\") what the lengths are in?",
-                domain.size,
                 if units.length == LengthUnit::Metre {
                     String::new()
                 } else {
-                    format!(" = [{:e}, {:e}, {:e}] m", metres[0], metres[1], metres[2])
+                    let m: Vec<String> = metres.iter().map(|m| format!("{m:e}")).collect();
+                    format!(" = [{}] m", m.join(", "))
                 }
             ),
         ));
