@@ -58,6 +58,35 @@ fn contact_bit_patterns_of_the_corpus_answer_finitely_and_symmetrically() {
     replay("contact_bits", checks::contact_bits);
 }
 
+/// The generator reaches 2D scenes: of 300 byte strings (ChaCha8, a fixed seed), some
+/// make valid 2D scenes (validated and packed by `check_scene`, as every generated
+/// scene) and some 2D scenes refused for a key without meaning in the plane.
+#[test]
+fn generated_scenes_include_valid_and_refused_2d_ones() {
+    use grainpack::contact::Dimension;
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(25);
+    let (mut valid, mut refused) = (0, 0);
+    for _ in 0..300 {
+        let n = rng.random_range(0..60);
+        let bytes: Vec<u8> = (0..n).map(|_| rng.random()).collect();
+        let text = checks::scene_from_choices(&mut checks::Choices::new(&bytes));
+        match checks::check_scene(&text, checks::SCENE_NAME) {
+            Some(s) if s.domain.dimension == Dimension::Two => valid += 1,
+            Some(_) => {}
+            None => {
+                let e = grainpack::scene::Scene::from_str(&text, checks::SCENE_NAME);
+                let message = e.expect_err("refused above").to_string();
+                refused += usize::from(message.contains("has no meaning in a 2D scene"));
+            }
+        }
+    }
+    assert!(
+        valid > 0 && refused > 0,
+        "{valid} valid, {refused} refused 2D scenes"
+    );
+}
+
 /// Doubles of every class (NaN, ±∞, subnormal, zero, huge) half the time, and
 /// moderate values the other half, so that definite forms are frequent.
 fn double() -> impl Strategy<Value = f64> {

@@ -6,6 +6,7 @@ use grainpack::io::scene::SceneError as LibSceneError;
 use grainpack::scene::{Boundary, GrainCount, Scene};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 use std::path::PathBuf;
 
 /// The name scenes given as dicts have in error messages (as a file name would).
@@ -152,11 +153,17 @@ impl PyScene {
         self.inner.seed
     }
 
-    /// Box edges `(Lx, Ly, Lz)`.
+    /// Box edges `(Lx, Ly, Lz)`, or the rectangle's `(Lx, Ly)` in a 2D scene.
     #[getter]
-    fn box_size(&self) -> (f64, f64, f64) {
-        let [x, y, z] = self.inner.domain.size;
-        (x, y, z)
+    fn box_size<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        PyTuple::new(py, self.inner.domain.sides())
+    }
+
+    /// 2 for a scene of ellipses in a rectangle (`box.size = [Lx, Ly]`), 3 for
+    /// ellipsoids in a box.
+    #[getter]
+    fn dimension(&self) -> i32 {
+        self.inner.domain.dimension.exponent()
     }
 
     /// `"periodic"` or `"reflecting"`.
@@ -210,9 +217,10 @@ impl PyScene {
             GrainCount::Exactly(n) => format!("grains={n}"),
             GrainCount::Fraction(f) => format!("target_fraction={f}"),
         };
-        let [x, y, z] = s.domain.size;
+        let sides: Vec<String> = s.domain.sides().iter().map(f64::to_string).collect();
         format!(
-            "Scene({count}, box=({x}, {y}, {z}), boundary={:?}, phases={:?}, seed={})",
+            "Scene({count}, box=({}), boundary={:?}, phases={:?}, seed={})",
+            sides.join(", "),
             self.boundary(),
             self.phases(),
             s.seed

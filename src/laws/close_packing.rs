@@ -21,7 +21,7 @@
 //! spheres.
 //!
 //! # Discs (2D)
-//! The same mapping holds in the plane ([`random_close_packing_of`]): a random line
+//! The same mapping holds in the plane ([`random_close_packing_discs`]): a random line
 //! crosses a disc of diameter `D` with probability proportional to its width `D`, along
 //! a chord whose tail is `P(L > l) = √(1 − l²/D²)` (the offset from the centre is
 //! uniform). The free length is calibrated as in 3D on a random close packing from
@@ -34,7 +34,6 @@
 //! taken stratified: rod `i` at `u = (i + ½)/rods` of the crossing weights, in the
 //! diameter class that `u` falls in, at the chord quantile of its place in the class.
 
-use crate::contact::Dimension;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -43,7 +42,7 @@ use std::collections::BinaryHeap;
 /// on (checked by a test to 10⁻³).
 pub const FREE_LENGTH: f64 = 0.7654;
 
-/// The free length per unit rod length for discs ([`random_close_packing_of`] in 2D):
+/// The free length per unit rod length for discs ([`random_close_packing_discs`]):
 /// with it, O'Hern et al.'s bidisperse discs give 0.842 (checked by a test to 10⁻³).
 pub const FREE_LENGTH_DISCS: f64 = 0.2535;
 
@@ -68,22 +67,20 @@ pub fn random_close_packing(diameters: &[f64]) -> Option<f64> {
     random_close_packing_with(diameters, RODS)
 }
 
-/// The random close packing fraction of spheres (3D, [`random_close_packing`], bit
-/// for bit) or discs (2D, see the module's docs) with these diameters.
+/// The random close packing fraction of discs with these diameters (one per disc;
+/// non-positive and non-finite ones are ignored), by Farr and Groot's model mapped to
+/// the plane (see the module's docs) with [`RODS`] rods. `None` when no diameter is
+/// usable.
 ///
 /// ```
-/// use grainpack::contact::Dimension;
-/// use grainpack::laws::random_close_packing_of;
+/// use grainpack::laws::random_close_packing_discs;
 /// let mut d = vec![1.0; 50];
 /// d.extend([1.4; 50]);
-/// let phi = random_close_packing_of(Dimension::Two, &d).unwrap();
+/// let phi = random_close_packing_discs(&d).unwrap();
 /// assert!((phi - 0.842).abs() < 1e-3);
 /// ```
-pub fn random_close_packing_of(dimension: Dimension, diameters: &[f64]) -> Option<f64> {
-    match dimension {
-        Dimension::Three => random_close_packing(diameters),
-        Dimension::Two => disc_packing(diameters, RODS),
-    }
+pub fn random_close_packing_discs(diameters: &[f64]) -> Option<f64> {
+    disc_packing(diameters, RODS)
 }
 
 /// The random close packing of discs with these diameters, with `rods` rods.
@@ -294,24 +291,18 @@ mod tests {
     fn discs_give_the_calibrated_and_published_fractions() {
         let mut bidisperse = vec![1.0; 50];
         bidisperse.extend([1.4; 50]);
-        let phi = random_close_packing_of(Dimension::Two, &bidisperse).unwrap();
+        let phi = random_close_packing_discs(&bidisperse).unwrap();
         assert!((phi - 0.842).abs() < 1e-3, "{phi}");
         let finer = disc_packing(&bidisperse, 4 * RODS).unwrap();
         assert!((phi - finer).abs() < 1e-3, "{phi} vs {finer}");
-        let equal = random_close_packing_of(Dimension::Two, &[2.0; 10]).unwrap();
+        let equal = random_close_packing_discs(&[2.0; 10]).unwrap();
         assert!((equal - 0.82).abs() <= 0.02, "{equal}");
         // Equal areas: 200² small discs per large one.
         let mut binary = vec![200.0; 4];
         binary.extend(std::iter::repeat_n(1.0, 4 * 40_000));
-        let far = random_close_packing_of(Dimension::Two, &binary).unwrap();
+        let far = random_close_packing_discs(&binary).unwrap();
         let limit = equal / (1.0 - 0.5 * (1.0 - equal));
         assert!((far - limit).abs() < 0.01, "{far} vs {limit}");
-        assert_eq!(random_close_packing_of(Dimension::Two, &[f64::NAN]), None);
-        // 3D is Farr and Groot's, unchanged.
-        let spheres = [1.0, 2.0, 2.5];
-        assert_eq!(
-            random_close_packing_of(Dimension::Three, &spheres),
-            random_close_packing(&spheres)
-        );
+        assert_eq!(random_close_packing_discs(&[f64::NAN]), None);
     }
 }

@@ -18,7 +18,7 @@ mod von_mises;
 mod von_mises_cdf;
 
 pub use close_packing::{
-    random_close_packing, random_close_packing_of, random_close_packing_with, FREE_LENGTH,
+    random_close_packing, random_close_packing_discs, random_close_packing_with, FREE_LENGTH,
     FREE_LENGTH_DISCS, RODS,
 };
 #[cfg(test)]

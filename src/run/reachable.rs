@@ -2,7 +2,8 @@
 //! asked for and the fraction drawn, and an estimate of the densest random packing
 //! they can reach.
 
-use crate::laws::random_close_packing_of;
+use crate::contact::Dimension;
+use crate::laws::{random_close_packing, random_close_packing_discs};
 use crate::scene::{GrainCount, GrainSpec, Scene};
 use serde::Serialize;
 
@@ -27,7 +28,7 @@ pub struct Drawn {
     /// `1 + gap`, so the estimate is the inflated grains' divided by `(1 + gap)³`.
     ///
     /// In 2D, the random close packing of discs with the ellipses' equivalent-circle
-    /// diameters ([`random_close_packing_of`]: 0.834 for equal discs, 0.842 for
+    /// diameters ([`random_close_packing_discs`]: 0.834 for equal discs, 0.842 for
     /// O'Hern et al.'s bidisperse ones), divided by `(1 + gap)²`. Ellipses free to turn
     /// pack denser than discs (aspect 1.3–1.4: about 0.90, Delaney et al. 2005; Donev
     /// et al. 2007), so for them it is a floor, not a ceiling.
@@ -54,7 +55,11 @@ impl Drawn {
                 GrainCount::Exactly(_) => scene.expected_fraction(),
             },
             drawn_fraction: volume / scene.domain.volume(),
-            reachable_fraction: random_close_packing_of(dimension, &diameters).unwrap_or(f64::NAN)
+            reachable_fraction: match dimension {
+                Dimension::Three => random_close_packing(&diameters),
+                Dimension::Two => random_close_packing_discs(&diameters),
+            }
+            .unwrap_or(f64::NAN)
                 / (1.0 + scene.packing.gap).powi(dimension.exponent()),
             spheres: (specs.iter()).all(|s| s.semi_axes.iter().all(|&a| a == s.semi_axes[0])),
             gap: scene.packing.gap,

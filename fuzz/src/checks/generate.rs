@@ -1,7 +1,9 @@
 //! A structure-aware scene generator: a tiny valid scene, then edits chosen by the
 //! input bytes, each setting a documented key (`docs/config.md`) to a value at or past
 //! its limits (zero, negative, NaN, huge, empty tables, wrong types), removing one,
-//! adding a phase or a misspelt key. libFuzzer and proptest drive the same bytes.
+//! adding a phase or a misspelt key, or making the scene 2D (a box of two lengths, so
+//! that the 2D keys and the refusals of 3D-only ones are reached: [`FLAT`]).
+//! libFuzzer and proptest drive the same bytes.
 
 /// The input bytes, read one choice at a time (zeros once they run out).
 pub struct Choices<'a> {
@@ -70,6 +72,7 @@ const TABLES: [(&str, &[&str]); 11] = [
             "spin_reference",
             "spin_kappa",
             "spin_mean",
+            "angle",
         ],
     ),
     (
@@ -215,6 +218,23 @@ const OTHERS: [&str; 36] = [
     "1979-05-27T07:32:00Z",
 ];
 
+/// 2D scenes: the boxes of two lengths an edit sets, and values only they take (the
+/// `vonmises` kind, `by = "area"`, the 2D densest fraction π/√12 = 0.90690 and just
+/// past it), set on their keys with the same edit.
+const FLAT: [&str; 3] = ["[20.0, 20.0]", "[24.0, 14.0]", "[9.0, 30.0]"];
+
+/// Keys with their 2D values (table, key, value).
+const FLAT_KEYS: [(&str, &str, &str); 8] = [
+    ("phase.orientation", "kind", "\"vonmises\""),
+    ("phase.orientation", "kappa", "2.0"),
+    ("phase.orientation", "angle", "30.0"),
+    ("phase.orientation", "kind", "\"aligned\""),
+    ("phase.size", "by", "\"area\""),
+    ("", "target_fraction", "0.9069"),
+    ("", "target_fraction", "0.90690"),
+    ("", "target_fraction", "0.9070"),
+];
+
 /// Words some keys take, besides the pools above.
 const WORDS: [&str; 20] = [
     "\"periodic\"",
@@ -269,7 +289,7 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
         if choices.exhausted() {
             break;
         }
-        match choices.byte() % 8 {
+        match choices.byte() % 9 {
             0..=3 => {
                 let (table, keys) = choices.pick(&TABLES);
                 let table = match table {
@@ -294,6 +314,16 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
                     .collect();
                 entries.extend(first.into_iter().map(|e| Entry { phase: phases, ..e }));
                 phases += 1;
+            }
+            8 => {
+                // 2D: a box of two lengths, and one 2D value on its key.
+                let size = choices.pick(&FLAT);
+                entries.retain(|e| !(e.table == "box" && e.key == "size"));
+                entries.push(entry("box", 0, "size", size));
+                let (table, key, value) = choices.pick(&FLAT_KEYS);
+                let phase = usize::from(choices.byte()) % phases;
+                entries.retain(|e| !(e.table == table && e.key == key && e.phase == phase));
+                entries.push(entry(table, phase, key, value));
             }
             _ => {
                 // A misspelt or misplaced key, or a key given twice.

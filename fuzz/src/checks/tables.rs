@@ -82,15 +82,17 @@ fn check_with_file(scene: &str, file: &str, data: &[u8]) {
     }
 }
 
-/// The measured table of a one-phase scene; the first byte picks the count, the mode
-/// and the phase selected.
+/// The measured table of a one-phase scene; the first byte picks the count, the mode,
+/// the phase selected and the box: of three lengths, or two (a 2D scene, whose table
+/// is of ellipses: `d` or `a1`, `a2`, `angle`).
 pub fn measured_table(data: &[u8]) {
     let (choice, table) = data.split_first().unwrap_or((&0, &[]));
     let count = ["grains = 3", "target_fraction = 0.2"][usize::from(choice & 1)];
     let mode = ["", ", mode = \"draw\"", ", mode = \"exact\""][usize::from(choice >> 1 & 3) % 3];
     let phase = ["", ", phase = 0", ", phase = \"1\""][usize::from(choice >> 3 & 3) % 3];
+    let size = ["[40.0, 40.0, 40.0]", "[40.0, 40.0]"][usize::from(choice >> 5 & 1)];
     let scene = format!(
-        "{count}\n[box]\nsize = [40.0, 40.0, 40.0]\n[[phase]]\n\
+        "{count}\n[box]\nsize = {size}\n[[phase]]\n\
          measured = {{ file = \"grains.csv\"{mode}{phase} }}\n"
     );
     check_with_file(&scene, "grains.csv", table);

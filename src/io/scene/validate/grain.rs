@@ -88,16 +88,13 @@ pub(super) fn distribution(
     Ok(d)
 }
 
-/// `[phase.orientation]` (at key path `key`) of a scene in `dimension`.
+/// `[phase.orientation]` (at key path `key`) of a 3D scene (a 2D scene's is
+/// `plane::orientation`).
 pub(super) fn orientation(
     src: &Source,
     key: &str,
     raw: &Spanned<RawOrientation>,
-    dimension: Dimension,
 ) -> Result<Orientation, SceneError> {
-    if dimension == Dimension::Two {
-        return super::plane::orientation(src, key, raw);
-    }
     let o = raw.get_ref();
     let kind = *o.kind.get_ref();
     if let Some(a) = &o.angle {

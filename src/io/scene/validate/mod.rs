@@ -256,7 +256,10 @@ fn phase(
     };
     let orientation = match &p.orientation {
         None => Orientation::Random,
-        Some(o) => orientation(src, &format!("{key}.orientation"), o, domain.dimension)?,
+        Some(o) if domain.dimension == Dimension::Two => {
+            plane::orientation(src, &format!("{key}.orientation"), o)?
+        }
+        Some(o) => orientation(src, &format!("{key}.orientation"), o)?,
     };
     let spherical = aspect_ratio == Distribution::Constant { value: 1.0 };
     let texture = match &p.texture {
