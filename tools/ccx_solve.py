@@ -20,17 +20,18 @@ lateral contraction comes from the other reference nodes' displacements.
   conjugate gradients, its default convergence test): 1.5 s a solve instead of 30 s with
   SPOOLES, whose force it matched to 0.1 % when measured, far inside the bounds.
 
-With --plane-homogeneous DIR and --plane-composite DIR, 2D plane-strain decks
-(rve.inp of a 2D RVE: CPE4, periodic equations in x and y) are solved too, four steps
-each (tools/ccx_plane.py: uniaxial x and y, equal biaxial, shear), every material read
-from the deck:
+Two 2D scenes (a box with two lengths) are packed too, and their plane-strain decks
+(CPE4, periodic equations in x and y) solved in four steps each (tools/ccx_plane.py:
+uniaxial x and y, equal biaxial, shear), every material read from the deck:
 
-- plane homogeneous: every material the same (E, nu): E' = E / (1 - nu^2) and
+- plane homogeneous: two phases of one material (E, nu) filling a 10 x 10 square on
+  32^2 pixels: E' = E / (1 - nu^2) and
   nu' = nu / (1 - nu) along x and y (uniaxial stress in the plane, plane strain), the
   transverse bulk modulus k = lambda + mu and the shear modulus mu, all to
   HOMOGENEOUS_TOL.
-- plane composite: two materials (fibres and matrix), the fibres' fraction the share of
-  the stiffer material's elements: k and mu inside the 2D Hashin-Shtrikman bounds,
+- plane composite: fibres (E = 100, nu = 0.3, diameter 7, gap 0.05) at an area
+  fraction of 0.5 in a matrix (E = 10, nu = 0.35), 50 x 50 on 64^2 pixels, the fibres'
+  fraction the share of the stiffer material's elements: k and mu inside the 2D Hashin-Shtrikman bounds,
   E'_x and E'_y (the transverse modulus in plane strain, 4 k mu / (k + mu) for an
   in-plane isotropic composite) inside the bounds that those give, and within
   ISOTROPY_TOL of each other.
@@ -95,6 +96,48 @@ elastic = { E = 10.0, nu = 0.35 }
 [output]
 dir = "composite"
 rve_resolution = 24
+rve_fill = "matrix"
+abaqus = true
+"""
+
+
+PLANE_HOMOGENEOUS = """
+seed = 11
+grains = 12
+[box]
+size = [10.0, 10.0]
+[[phase]]
+name = "a"
+size = { distribution = "uniform", min = 2.0, max = 3.0 }
+aspect_ratio = { distribution = "uniform", min = 1.0, max = 2.0 }
+elastic = { E = 210.0, nu = 0.3 }
+[[phase]]
+name = "b"
+size = { distribution = "constant", value = 2.5 }
+elastic = { E = 210.0, nu = 0.3 }
+[output]
+dir = "plane_homogeneous"
+rve_resolution = 32
+rve_fill = "grains"
+abaqus = true
+"""
+
+PLANE_COMPOSITE = """
+seed = 23
+target_fraction = 0.50
+[box]
+size = [50.0, 50.0]
+[[phase]]
+name = "fibres"
+size = { distribution = "constant", value = 7.0 }
+elastic = { E = 100.0, nu = 0.3 }
+[matrix]
+elastic = { E = 10.0, nu = 0.35 }
+[packing]
+gap = 0.05
+[output]
+dir = "plane_composite"
+rve_resolution = 64
 rve_fill = "matrix"
 abaqus = true
 """
@@ -223,17 +266,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--pack", default="target/release/pack")
     parser.add_argument("--work", default=None, help="directory to work in (default: a temporary one)")
-    parser.add_argument("--plane-homogeneous", help="output directory of a 2D RVE of one material")
-    parser.add_argument("--plane-composite", help="output directory of a 2D fibre composite")
     args = parser.parse_args()
-    if bool(args.plane_homogeneous) != bool(args.plane_composite):
-        parser.error("give both --plane-homogeneous and --plane-composite, or neither")
     pack = os.path.abspath(args.pack)
     work = args.work or tempfile.mkdtemp(prefix="ccx_solve_")
     os.makedirs(work, exist_ok=True)
     failures = []
     started = time.time()
-    for name, text in [("homogeneous", HOMOGENEOUS), ("composite", COMPOSITE)]:
+    scenes = [("homogeneous", HOMOGENEOUS), ("composite", COMPOSITE),
+              ("plane_homogeneous", PLANE_HOMOGENEOUS), ("plane_composite", PLANE_COMPOSITE)]
+    for name, text in scenes:
         with open(os.path.join(work, name + ".toml"), "w") as f:
             f.write(text)
         subprocess.run([pack, name + ".toml", "--quiet"], cwd=work, check=True)
@@ -260,12 +301,11 @@ def main():
     print(f"composite: E_max/E_min - 1 = {spread:.4f} (at most {ISOTROPY_TOL})")
     if spread > ISOTROPY_TOL:
         failures.append(f"composite moduli differ by {spread:.4f} > {ISOTROPY_TOL} between x, y, z")
-    print(f"6 solves and 2 packings in {time.time() - started:.1f} s (work in {work})")
-    if args.plane_homogeneous:
-        started = time.time()
-        failures += check_plane_homogeneous(args.plane_homogeneous, work)
-        failures += check_plane_composite(args.plane_composite, work)
-        print(f"8 plane-strain solves in {time.time() - started:.1f} s")
+    print(f"6 solves and 4 packings in {time.time() - started:.1f} s (work in {work})")
+    started = time.time()
+    failures += check_plane_homogeneous(os.path.join(work, "plane_homogeneous"), work)
+    failures += check_plane_composite(os.path.join(work, "plane_composite"), work)
+    print(f"8 plane-strain solves in {time.time() - started:.1f} s")
     if failures:
         print("FAILED:\n  " + "\n  ".join(failures))
         return 1
