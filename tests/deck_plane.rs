@@ -1,7 +1,10 @@
 //! The plane-strain deck and the load case of a 2D pixel RVE, read back line by line:
 //! CPE4 elements counter-clockwise on the pixels, nodes in the plane, one equation per
 //! far node and in-plane component, sections of thickness 1, F_zz held in load.yaml.
-//! CalculiX solves these decks in CI (tools/ccx_solve.py).
+//! CalculiX solves these decks in CI (tools/ccx_solve.py). And `pack` on a 2D scene:
+//! its rve.vti one cell thick, areas in rve_grains.csv, the deck and the load case.
+
+mod support;
 
 use grainpack::contact::{ellipse_quaternion, ellipse_semi_axes};
 use grainpack::io::decks::{write_abaqus_deck, write_load_yaml, PLANE_THICKNESS};
@@ -186,4 +189,73 @@ fn the_plane_load_case_holds_f_zz() {
         "{load}"
     );
     assert!(load.contains("12 x 8 x 1 cells, a 2D grid"));
+}
+
+#[test]
+fn pack_writes_a_2d_scene_as_pixels_one_cell_thick_with_its_deck_and_load_case() {
+    let dir = support::files::scratch("deck_plane", "pack");
+    let scene = r#"
+seed = 4
+grains = 6
+[box]
+size = [20.0, 12.0]
+[[phase]]
+name = "fibre"
+size = { distribution = "uniform", min = 2.5, max = 4.0 }
+aspect_ratio = { distribution = "uniform", min = 1.0, max = 2.0 }
+elastic = { E = 70.0, nu = 0.2 }
+[matrix]
+elastic = { E = 3.0, nu = 0.35 }
+[output]
+dir = "out"
+rve_resolution = [40, 24]
+rve_fill = "matrix"
+damask = true
+abaqus = true
+"#;
+    std::fs::write(dir.join("scene.toml"), scene).unwrap();
+    support::files::pack_ok(&dir, &["scene.toml", "--quiet"]);
+    let out = dir.join("out");
+    let read = |name: &str| std::fs::read_to_string(out.join(name)).unwrap();
+    // Pixels of 0.5 µm, and the layer as thick: 5e-7 m each way.
+    let vti = read("rve.vti");
+    assert!(vti.contains(r#"WholeExtent="0 40 0 24 0 1""#));
+    let spacing: Vec<f64> = vti
+        .split("Spacing=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .split(' ')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    for h in spacing {
+        assert!((h - 5e-7).abs() < 1e-21, "{h}");
+    }
+    let summary: serde_json::Value = serde_json::from_str(&read("summary.json")).unwrap();
+    assert_eq!(summary["rve"]["layer_thickness"], 0.5);
+    // rve_grains.csv in areas: pixels × 0.25 µm², against π a1 a2 of grains.csv.
+    let grains: Vec<Vec<f64>> = read("grains.csv")
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let mut pixels = 0.0;
+    for (row, g) in read("rve_grains.csv").lines().skip(1).zip(&grains) {
+        let f: Vec<f64> = row.split(',').map(|v| v.parse().unwrap()).collect();
+        assert_eq!(f[3], f[2] * 0.25, "{row}");
+        let area = std::f64::consts::PI * g[5] * g[6];
+        // Written to 10 significant digits.
+        assert!((f[4] / area - 1.0).abs() < 1e-9, "{row}: not {area}");
+        // A coarse pixel image: each area within a pixel or two per unit of perimeter.
+        assert!((f[3] / area - 1.0).abs() < 0.15, "{row}");
+        pixels += f[2];
+    }
+    let matrix = summary["rve"]["matrix_fraction"].as_f64().unwrap();
+    assert!(((pixels + matrix * 960.0) - 960.0).abs() < 1e-9);
+    let deck = read("rve.inp");
+    let lines: Vec<&str> = deck.lines().collect();
+    assert_eq!(block(&lines, "*Element, type=CPE4").len(), 960);
+    assert!(read("load.yaml").contains("[0, 0, 0]]"));
 }
