@@ -236,7 +236,11 @@ abaqus = true
     let summary: serde_json::Value = serde_json::from_str(&read("summary.json")).unwrap();
     assert_eq!(summary["rve"]["layer_thickness"], 0.5);
     // rve_grains.csv in areas: pixels × 0.25 µm², against π a1 a2 of grains.csv.
-    let grains: Vec<Vec<f64>> = read("grains.csv")
+    // The semi-axes by their column names (a 2D table has no z, a3).
+    let table = read("grains.csv");
+    let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    let [a1, a2] = ["a1", "a2"].map(|c| header.iter().position(|h| *h == c).unwrap());
+    let grains: Vec<Vec<f64>> = table
         .lines()
         .skip(1)
         .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
@@ -245,7 +249,7 @@ abaqus = true
     for (row, g) in read("rve_grains.csv").lines().skip(1).zip(&grains) {
         let f: Vec<f64> = row.split(',').map(|v| v.parse().unwrap()).collect();
         assert_eq!(f[3], f[2] * 0.25, "{row}");
-        let area = std::f64::consts::PI * g[5] * g[6];
+        let area = std::f64::consts::PI * g[a1] * g[a2];
         // Written to 10 significant digits.
         assert!((f[4] / area - 1.0).abs() < 1e-9, "{row}: not {area}");
         // A coarse pixel image: each area within a pixel or two per unit of perimeter.
