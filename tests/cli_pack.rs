@@ -113,6 +113,14 @@ fn bad_scenes() -> Vec<(&'static str, String, &'static str, &'static str)> {
             ":3:",
             "target_fraction = 0.9",
         ),
+        (
+            // A 2D scene (a rectangle of 60 × 60) with a tilt axis it has no use for.
+            "plane_tilt_about_x",
+            base.replace("[30.0, 30.0, 30.0]", "[60.0, 60.0]")
+                .replace("axis = \"z\"", "axis = \"x\""),
+            ":20:",
+            "phase[1].orientation.axis = \"x\": has no meaning in a 2D scene",
+        ),
     ]
 }
 

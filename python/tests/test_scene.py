@@ -157,13 +157,18 @@ def test_2d_scenes_read_with_their_dimension_and_rectangle():
     assert fibres.dimension == 2 and fibres.box_size == (60.0, 60.0)
     assert "box=(60, 60)" in repr(fibres)
     assert gp.Scene.from_toml(TOML).dimension == 3
-    flat = TOML.replace("[30.0, 30.0, 30.0]", "[30.0, 20.0]")
+    flat = TOML.replace("[30.0, 30.0, 30.0]", "[30.0, 20.0]").replace("grains = 60", "grains = 10")
     scene = gp.Scene.from_toml(flat)
     assert scene.dimension == 2 and scene.box_size == (30.0, 20.0)
     # The same scene as a dict, and a 3D-only key refused naming it.
-    as_dict = {"grains": 10, "box": {"size": [30.0, 20.0]}, "phase": [{"size": {"distribution": "constant", "value": 4.0}}]}
+    as_dict = {
+        "grains": 10,
+        "box": {"size": [30.0, 20.0]},
+        "phase": [{"size": {"distribution": "constant", "value": 4.0}}],
+    }
     assert gp.Scene.from_dict(as_dict).dimension == 2
     bad = flat.replace('kind = "random"', 'kind = "fisher"')
-    with pytest.raises(gp.SceneError, match=r'phase\[0\]\.orientation\.kind = "fisher": has no meaning in a 2D scene') as caught:
+    refused = r'phase\[0\]\.orientation\.kind = "fisher": has no meaning in a 2D scene'
+    with pytest.raises(gp.SceneError, match=refused) as caught:
         gp.Scene.from_toml(bad)
     assert caught.value.key == "phase[0].orientation.kind"

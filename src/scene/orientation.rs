@@ -47,7 +47,8 @@ pub enum Orientation {
         quaternion: [f64; 4],
     },
     /// Fibres: the first axis of every grain along `axis`, by the shortest rotation from
-    /// x to `axis`.
+    /// x to `axis`. A 2D scene's `angle` θ is the axis `(cos θ, sin θ, 0)`, a rotation
+    /// about z.
     Aligned {
         /// Unit vector.
         axis: [f64; 3],

@@ -218,21 +218,41 @@ const OTHERS: [&str; 36] = [
     "1979-05-27T07:32:00Z",
 ];
 
-/// 2D scenes: the boxes of two lengths an edit sets, and values only they take (the
-/// `vonmises` kind, `by = "area"`, the 2D densest fraction π/√12 = 0.90690 and just
-/// past it), set on their keys with the same edit.
+/// 2D scenes: the boxes of two lengths an edit sets, each with one of [`FLAT_SETS`].
 const FLAT: [&str; 3] = ["[20.0, 20.0]", "[24.0, 14.0]", "[9.0, 30.0]"];
 
-/// Keys with their 2D values (table, key, value).
-const FLAT_KEYS: [(&str, &str, &str); 8] = [
-    ("phase.orientation", "kind", "\"vonmises\""),
-    ("phase.orientation", "kappa", "2.0"),
-    ("phase.orientation", "angle", "30.0"),
-    ("phase.orientation", "kind", "\"aligned\""),
-    ("phase.size", "by", "\"area\""),
-    ("", "target_fraction", "0.9069"),
-    ("", "target_fraction", "0.90690"),
-    ("", "target_fraction", "0.9070"),
+/// What a 2D edit sets beside the box (table, key, value): the 2D orientations, the
+/// 2D limit of the fraction (π/√12 = 0.90690) at and past it, and the 3D-only keys a
+/// 2D scene refuses (mixed 2D/3D scenes).
+const FLAT_SETS: [&[(&str, &str, &str)]; 10] = [
+    &[],
+    &[
+        ("phase.orientation", "kind", "\"vonmises\""),
+        ("phase.orientation", "kappa", "2.0"),
+        ("phase.orientation", "mean", "30.0"),
+    ],
+    &[
+        ("phase.orientation", "kind", "\"aligned\""),
+        ("phase.orientation", "angle", "-45.0"),
+    ],
+    &[
+        ("phase.aspect_ratio", "distribution", "\"uniform\""),
+        ("phase.aspect_ratio", "min", "1.0"),
+        ("phase.aspect_ratio", "max", "2.5"),
+    ],
+    &[("", "grains", ""), ("", "target_fraction", "0.90690")],
+    &[("", "grains", ""), ("", "target_fraction", "0.9070")],
+    &[("phase.orientation", "kind", "\"fisher\"")],
+    &[
+        ("phase.b_over_a", "distribution", "\"constant\""),
+        ("phase.b_over_a", "value", "0.5"),
+    ],
+    &[("packing", "rotation", "\"axis\"")],
+    &[
+        ("phase.orientation", "kind", "\"tilt\""),
+        ("phase.orientation", "axis", "\"x\""),
+        ("phase.orientation", "kappa", "1.0"),
+    ],
 ];
 
 /// Words some keys take, besides the pools above.
@@ -316,14 +336,18 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
                 phases += 1;
             }
             8 => {
-                // 2D: a box of two lengths, and one 2D value on its key.
+                // 2D: a box of two lengths, and one of the 2D edits.
                 let size = choices.pick(&FLAT);
                 entries.retain(|e| !(e.table == "box" && e.key == "size"));
                 entries.push(entry("box", 0, "size", size));
-                let (table, key, value) = choices.pick(&FLAT_KEYS);
                 let phase = usize::from(choices.byte()) % phases;
-                entries.retain(|e| !(e.table == table && e.key == key && e.phase == phase));
-                entries.push(entry(table, phase, key, value));
+                for &(table, key, value) in choices.pick(&FLAT_SETS) {
+                    entries.retain(|e| !(e.table == table && e.key == key && e.phase == phase));
+                    // An empty value removes the key.
+                    if !value.is_empty() {
+                        entries.push(entry(table, phase, key, value));
+                    }
+                }
             }
             _ => {
                 // A misspelt or misplaced key, or a key given twice.
