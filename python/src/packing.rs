@@ -2,13 +2,13 @@
 //! the CLI's outputs on request.
 
 use crate::errors::chain;
+use grainpack::contact::Dimension;
 use grainpack::io::report::{
     crystal_orientations, texture_summaries, write_grains_csv, write_outputs, Summary,
 };
 use grainpack::io::texture::measure_textures;
 use grainpack::io::voxel::voxelise;
 use grainpack::run::RunResult;
-use grainpack::contact::Dimension;
 use grainpack::scene::{rve_cells, RveFill, Scene};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyOSError, PyValueError};
@@ -162,7 +162,11 @@ impl PyPacking {
             [x, y] if plane => [*x, *y, 1],
             [x, y, z] if !plane => [*x, *y, *z],
             other => {
-                let want = if plane { "two (a 2D scene's grid is one cell thick)" } else { "three" };
+                let want = if plane {
+                    "two (a 2D scene's grid is one cell thick)"
+                } else {
+                    "three"
+                };
                 return Err(PyValueError::new_err(format!(
                     "resolution = {other:?}: must be one int or {want}"
                 )));
