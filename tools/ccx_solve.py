@@ -20,6 +20,22 @@ lateral contraction comes from the other reference nodes' displacements.
   conjugate gradients, its default convergence test): 1.5 s a solve instead of 30 s with
   SPOOLES, whose force it matched to 0.1 % when measured, far inside the bounds.
 
+Two 2D scenes (a box with two lengths) are packed too, and their plane-strain decks
+(CPE4, periodic equations in x and y) solved in four steps each (tools/ccx_plane.py:
+uniaxial x and y, equal biaxial, shear), every material read from the deck:
+
+- plane homogeneous: two phases of one material (E, nu) filling a 10 x 10 square on
+  32^2 pixels: E' = E / (1 - nu^2) and
+  nu' = nu / (1 - nu) along x and y (uniaxial stress in the plane, plane strain), the
+  transverse bulk modulus k = lambda + mu and the shear modulus mu, all to
+  HOMOGENEOUS_TOL.
+- plane composite: fibres (E = 100, nu = 0.3, diameter 7, gap 0.05) at an area
+  fraction of 0.5 in a matrix (E = 10, nu = 0.35), 50 x 50 on 64^2 pixels, the fibres'
+  fraction the share of the stiffer material's elements: k and mu inside the 2D Hashin-Shtrikman bounds,
+  E'_x and E'_y (the transverse modulus in plane strain, 4 k mu / (k + mu) for an
+  in-plane isotropic composite) inside the bounds that those give, and within
+  ISOTROPY_TOL of each other.
+
 Exit code 0 when every check passes, 1 otherwise. Uses only the standard library.
 """
 
@@ -30,6 +46,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+from ccx_plane import hashin_shtrikman_2d, plane_k_mu, plane_modulus, plane_moduli
 
 # CalculiX prints forces and displacements with 7 significant digits: rounding of
 # 5e-7 relative on each, so E and nu come back within 1e-6 of the material's.
@@ -78,6 +96,48 @@ elastic = { E = 10.0, nu = 0.35 }
 [output]
 dir = "composite"
 rve_resolution = 24
+rve_fill = "matrix"
+abaqus = true
+"""
+
+
+PLANE_HOMOGENEOUS = """
+seed = 11
+grains = 12
+[box]
+size = [10.0, 10.0]
+[[phase]]
+name = "a"
+size = { distribution = "uniform", min = 2.0, max = 3.0 }
+aspect_ratio = { distribution = "uniform", min = 1.0, max = 2.0 }
+elastic = { E = 210.0, nu = 0.3 }
+[[phase]]
+name = "b"
+size = { distribution = "constant", value = 2.5 }
+elastic = { E = 210.0, nu = 0.3 }
+[output]
+dir = "plane_homogeneous"
+rve_resolution = 32
+rve_fill = "grains"
+abaqus = true
+"""
+
+PLANE_COMPOSITE = """
+seed = 23
+target_fraction = 0.50
+[box]
+size = [50.0, 50.0]
+[[phase]]
+name = "fibres"
+size = { distribution = "constant", value = 7.0 }
+elastic = { E = 100.0, nu = 0.3 }
+[matrix]
+elastic = { E = 10.0, nu = 0.35 }
+[packing]
+gap = 0.05
+[output]
+dir = "plane_composite"
+rve_resolution = 64
 rve_fill = "matrix"
 abaqus = true
 """
@@ -159,6 +219,49 @@ def kg(e, nu):
     return e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu))
 
 
+def check_plane_homogeneous(out_dir, work):
+    """The failures of a 2D RVE of one material (see the module's docs)."""
+    m, _, materials = plane_moduli(os.path.join(out_dir, "rve.inp"), work)
+    failures = []
+    if len(set(materials.values())) != 1:
+        return [f"plane homogeneous: materials differ: {materials}"]
+    e, nu = next(iter(materials.values()))
+    k, mu = plane_k_mu(e, nu)
+    want = {"E_x": e / (1 - nu**2), "E_y": e / (1 - nu**2), "nu_xy": nu / (1 - nu),
+            "nu_yx": nu / (1 - nu), "k": k, "mu_x1": mu, "mu_y1": mu}
+    for key, value in want.items():
+        print(f"plane homogeneous {key} = {m[key]!r} ({value!r})")
+        if abs(m[key] / value - 1.0) > HOMOGENEOUS_TOL:
+            failures.append(f"plane homogeneous {key} = {m[key]}, not {value} within {HOMOGENEOUS_TOL}")
+    return failures
+
+
+def check_plane_composite(out_dir, work):
+    """The failures of a 2D fibre composite (see the module's docs)."""
+    m, sets, materials = plane_moduli(os.path.join(out_dir, "rve.inp"), work)
+    if len(materials) != 2:
+        return [f"plane composite: {len(materials)} materials, not 2: {materials}"]
+    (soft, (e1, nu1)), (stiff, (e2, nu2)) = sorted(materials.items(), key=lambda kv: kv[1][0])
+    f2 = sets[stiff] / (sets[soft] + sets[stiff])
+    (k_lo, k_hi), (mu_lo, mu_hi) = hashin_shtrikman_2d(f2, *plane_k_mu(e1, nu1), *plane_k_mu(e2, nu2))
+    e_lo, e_hi = plane_modulus(k_lo, mu_lo), plane_modulus(k_hi, mu_hi)
+    print(f"plane composite: {stiff} (E = {e2}, nu = {nu2}) at {f2:.4f} (pixels) in {soft} "
+          f"(E = {e1}, nu = {nu1})")
+    failures = []
+    for key, lo, hi in [("k", k_lo, k_hi), ("mu", mu_lo, mu_hi), ("E_x", e_lo, e_hi), ("E_y", e_lo, e_hi)]:
+        print(f"plane composite {key} = {m[key]:.6g}, HS bounds [{lo:.6g}, {hi:.6g}]")
+        if not lo <= m[key] <= hi:
+            failures.append(f"plane composite {key} = {m[key]} outside HS bounds [{lo}, {hi}]")
+    # The forces along y on X1 and along x on Y1 carry the same mean shear stress.
+    if abs(m["mu_x1"] / m["mu_y1"] - 1.0) > HOMOGENEOUS_TOL:
+        failures.append(f"plane composite shear: {m['mu_x1']} on X1, {m['mu_y1']} on Y1")
+    spread = max(m["E_x"], m["E_y"]) / min(m["E_x"], m["E_y"]) - 1.0
+    print(f"plane composite: E'_max/E'_min - 1 = {spread:.4f} (at most {ISOTROPY_TOL})")
+    if spread > ISOTROPY_TOL:
+        failures.append(f"plane composite E'_x, E'_y differ by {spread:.4f} > {ISOTROPY_TOL}")
+    return failures
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--pack", default="target/release/pack")
@@ -169,7 +272,9 @@ def main():
     os.makedirs(work, exist_ok=True)
     failures = []
     started = time.time()
-    for name, text in [("homogeneous", HOMOGENEOUS), ("composite", COMPOSITE)]:
+    scenes = [("homogeneous", HOMOGENEOUS), ("composite", COMPOSITE),
+              ("plane_homogeneous", PLANE_HOMOGENEOUS), ("plane_composite", PLANE_COMPOSITE)]
+    for name, text in scenes:
         with open(os.path.join(work, name + ".toml"), "w") as f:
             f.write(text)
         subprocess.run([pack, name + ".toml", "--quiet"], cwd=work, check=True)
@@ -196,7 +301,11 @@ def main():
     print(f"composite: E_max/E_min - 1 = {spread:.4f} (at most {ISOTROPY_TOL})")
     if spread > ISOTROPY_TOL:
         failures.append(f"composite moduli differ by {spread:.4f} > {ISOTROPY_TOL} between x, y, z")
-    print(f"6 solves and 2 packings in {time.time() - started:.1f} s (work in {work})")
+    print(f"6 solves and 4 packings in {time.time() - started:.1f} s (work in {work})")
+    started = time.time()
+    failures += check_plane_homogeneous(os.path.join(work, "plane_homogeneous"), work)
+    failures += check_plane_composite(os.path.join(work, "plane_composite"), work)
+    print(f"8 plane-strain solves in {time.time() - started:.1f} s")
     if failures:
         print("FAILED:\n  " + "\n  ".join(failures))
         return 1

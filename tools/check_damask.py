@@ -24,6 +24,10 @@ own Python package (damask, pinned in tools/requirements-exports.txt).
 - `centers.vtp` and `grains.vtu` (PyVista): the point data and cell data
   `crystal_quaternion` and `euler_angles` are the CSV's, exactly.
 - `load.yaml`: `damask.LoadcaseGrid.load` reads it, with one load step.
+- A 2D RVE (the summary's `rve.layer_thickness`): `rve.vti` has one cell along z, its
+  size is the rectangle's and the layer's thickness; the load step holds F_zz (plane
+  strain, no rate and no stress condition on zz); `centers.vtp` and `grains.vtu` are
+  checked when present.
 
 Exit code 0 when every check passes, 1 with the failures listed otherwise.
 """
@@ -62,9 +66,13 @@ def main():
     rve = summary["rve"]
     check(list(grid.cells) == rve["cells"], f"rve.vti cells {grid.cells} != {rve['cells']}")
     unit = summary["units"]["length"]
-    metres = np.array(summary["box"], dtype=float) / PER_METRE[unit]
+    thickness = rve.get("layer_thickness")
+    plane = thickness is not None
+    box = [*summary["box"][:2], thickness] if plane else summary["box"]
+    check(not plane or rve["cells"][2] == 1, f"2D rve.vti with {rve['cells'][2]} cells along z")
+    metres = np.array(box, dtype=float) / PER_METRE[unit]
     check(np.allclose(grid.size, metres, rtol=SIZE_TOL, atol=0),
-          f"rve.vti size {grid.size} m != box {summary['box']} {unit} = {metres} m")
+          f"rve.vti size {grid.size} m != box {box} {unit} = {metres} m")
     for name, phase in cfg["phase"].items():
         elastic = phase.get("mechanical", {}).get("elastic", {})
         if elastic.get("type") == "Hooke" and "C_11" in elastic:
@@ -98,6 +106,10 @@ def main():
     import pyvista
     csv_o = np.array([[float(r[c]) for c in ("o0", "o1", "o2", "o3")] for r in grains])
     csv_e = np.array([[float(r[c]) for c in ("phi1", "Phi", "phi2")] for r in grains])
+    vtk_files = [os.path.join(out, n) for n in ("centers.vtp", "grains.vtu")]
+    if plane and not all(os.path.exists(f) for f in vtk_files):
+        check_grid_and_load(check, out, grid, len(materials), len(grains), csv_e, plane, worst)
+        return check.exit_code()
     centers = pyvista.read(os.path.join(out, "centers.vtp"))
     check(np.array_equal(centers.point_data["crystal_quaternion"], csv_o),
           "centers.vtp crystal_quaternion != grains.csv o0..o3")
@@ -109,7 +121,12 @@ def main():
           "grains.vtu crystal_quaternion != grains.csv o0..o3 of each triangle's grain")
     check(np.array_equal(surfaces.cell_data["euler_angles"], csv_e[ids]),
           "grains.vtu euler_angles != grains.csv of each triangle's grain")
-    # rve.vti through DAMASK's own VTK reader.
+    check_grid_and_load(check, out, grid, len(materials), len(grains), csv_e, plane, worst)
+    return check.exit_code()
+
+
+def check_grid_and_load(check, out, grid, materials, grains, csv_e, plane, worst):
+    """rve.vti through DAMASK's VTK reader, its layout, and load.yaml."""
     vti = damask.VTK.load(os.path.join(out, "rve.vti"))
     labels = vti.labels["Cell Data"]
     check(np.array_equal(vti.get("material").reshape(-1), grid.material.reshape(-1, order="F")),
@@ -119,7 +136,7 @@ def main():
               f"rve.vti: cell array {label} has {vti.get(label).shape[1:]} components")
     if "phi1" in labels:
         m = vti.get("material").reshape(-1)
-        want = np.vstack([csv_e, np.zeros((len(materials) - len(grains), 3))])[m]
+        want = np.vstack([csv_e, np.zeros((materials - grains, 3))])[m]
         for a, name in enumerate(("phi1", "Phi", "phi2")):
             check(np.array_equal(vti.get(name).reshape(-1), want[:, a]),
                   f"rve.vti {name} != grains.csv {name} of each cell's material")
@@ -133,9 +150,14 @@ def main():
                   f"rve.vti line {i + 1}: the data is not alone on the line after the tag")
     load = damask.LoadcaseGrid.load(os.path.join(out, "load.yaml"))
     check(len(load["loadstep"]) == 1, "load.yaml has no single load step")
-    print(f"material.yaml: {len(materials)} materials, complete and valid; rve.vti {[int(c) for c in grid.cells]} "
-          f"cells, cell arrays {labels}; orientations agree with DAMASK's to {worst:.1e}")
-    return check.exit_code()
+    if plane:
+        bc = load["loadstep"][0]["boundary_conditions"]["mechanical"]
+        rate = bc.get("dot_F", bc.get("F"))
+        check(rate[2][2] == 0 and bc["P"][2][2] == "x",
+              f"2D load.yaml: F_zz not held (dot_F zz {rate[2][2]}, P zz {bc['P'][2][2]})")
+    print(f"material.yaml: {materials} materials, complete and valid; rve.vti {[int(c) for c in grid.cells]} "
+          f"cells{' (2D)' if plane else ''}, cell arrays {labels}; orientations agree with DAMASK's "
+          f"to {worst:.1e}")
 
 
 if __name__ == "__main__":

@@ -148,10 +148,11 @@ class Packing:
 
         Parameters
         ----------
-        resolution : int or (nx, ny, nz)
+        resolution : int, (nx, ny, nz), or (nx, ny) in 2D
             An int puts that many cells along the longest edge and proportionally many
             along the others (as the scene's ``rve_resolution = N``); three ints give
-            each count.
+            each count. A 2D scene's grid is one cell thick (``nz = 1``): an int, or
+            two ints ``(nx, ny)``.
         fill : "grains" or "matrix"
             ``"grains"``: every voxel goes to the grain it is nearest to in the grains'
             own metrics; ``"matrix"``: voxels outside every grain are the matrix,
@@ -172,7 +173,7 @@ class Packing:
         try:
             cells = [int(resolution)] if np.isscalar(resolution) else [int(n) for n in resolution]
         except (TypeError, ValueError, OverflowError):
-            raise ValueError(f"resolution = {resolution!r}: must be an int or three ints") from None
+            raise ValueError(f"resolution = {resolution!r}: must be an int or a list of ints") from None
         if any(not 1 <= n < 2**32 for n in cells):
             raise ValueError(f"resolution = {resolution!r}: cell counts must be in [1, 2**32)")
         material, phase, (nx, ny, nz) = self._native._voxelise(cells, fill)

@@ -2,13 +2,14 @@
 //! the CLI's outputs on request.
 
 use crate::errors::chain;
+use grainpack::contact::Dimension;
 use grainpack::io::report::{
     crystal_orientations, texture_summaries, write_grains_csv, write_outputs, Summary,
 };
 use grainpack::io::texture::measure_textures;
 use grainpack::io::voxel::voxelise;
 use grainpack::run::RunResult;
-use grainpack::scene::{proportional_cells, RveFill, Scene};
+use grainpack::scene::{rve_cells, RveFill, Scene};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -142,7 +143,8 @@ impl PyPacking {
 
     /// The voxel grid: `(material, phase, cells)`, both flat in x-fastest order.
     /// `cells` is an int (along the longest edge, the others proportional, as
-    /// `rve_resolution = N`) or three counts; `fill` is `"grains"` or `"matrix"`.
+    /// `rve_resolution = N`) or three counts (two in 2D, whose grid is one cell
+    /// thick); `fill` is `"grains"` or `"matrix"`.
     fn _voxelise<'py>(
         &self,
         py: Python<'py>,
@@ -158,14 +160,21 @@ impl PyPacking {
                 )))
             }
         };
-        let size = self.scene.domain.size;
+        let domain = &self.scene.domain;
+        let plane = domain.dimension == Dimension::Two;
         let cells = match cells.as_slice() {
-            [n] => proportional_cells(*n, size),
-            [x, y, z] => [*x, *y, *z],
+            [n] => rve_cells(*n, domain),
+            [x, y] if plane => [*x, *y, 1],
+            [x, y, z] if !plane => [*x, *y, *z],
             other => {
+                let want = if plane {
+                    "two (a 2D scene's grid is one cell thick)"
+                } else {
+                    "three"
+                };
                 return Err(PyValueError::new_err(format!(
-                    "resolution = {other:?}: must be one int or three"
-                )))
+                    "resolution = {other:?}: must be one int or {want}"
+                )));
             }
         };
         let (grains, domain, phases) = (

@@ -48,7 +48,7 @@ pub use grain::{aspect_ratio, GrainSpec, SampleError, CRYSTAL_STREAM};
 pub use measured::{Measured, MeasuredGrain, MeasuredMode};
 pub use orientation::{tilt_angle, tilt_angle_of, Axis, Orientation};
 pub use output::{
-    proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
+    proportional_cells, rve_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
     DEFAULT_VTK_RESOLUTION, MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
     MIN_VTK_RESOLUTION,
 };

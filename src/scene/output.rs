@@ -3,6 +3,8 @@
 //! Every key is validated once, in `validate::output`; the writers read these typed
 //! values and check nothing again. `docs/config.md` documents each key and default.
 
+use super::Domain;
+use crate::contact::Dimension;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -178,6 +180,19 @@ pub fn proportional_cells(longest: usize, size: [f64; 3]) -> [usize; 3] {
     size.map(|l| ((longest as f64 * l / l_max).round() as usize).clamp(1, longest.max(1)))
 }
 
+/// [`proportional_cells`] over the box's edges: `[Nx, Ny, Nz]` in 3D; in 2D over the
+/// rectangle's two, and one layer along z (`[Nx, Ny, 1]`, a pixel image).
+pub fn rve_cells(longest: usize, domain: &Domain) -> [usize; 3] {
+    match domain.dimension {
+        Dimension::Three => proportional_cells(longest, domain.size),
+        Dimension::Two => {
+            let [lx, ly, _] = domain.size;
+            let [nx, ny, _] = proportional_cells(longest, [lx, ly, 0.0]);
+            [nx, ny, 1]
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -190,6 +205,17 @@ mod tests {
         assert_eq!(proportional_cells(10, [100.0, 100.0, 1.0]), [10, 10, 1]);
         // 64 · 3/7 = 27.43 rounds down, 64 · 5/7 = 45.71 up.
         assert_eq!(proportional_cells(64, [3.0, 7.0, 5.0]), [27, 64, 46]);
+    }
+
+    #[test]
+    fn rve_cells_of_a_plane_are_one_layer_in_proportion_to_the_rectangle() {
+        use crate::scene::Boundary;
+        let plane = Domain::plane([20.0, 10.0], Boundary::Periodic);
+        assert_eq!(rve_cells(64, &plane), [64, 32, 1]);
+        let tall = Domain::plane([3.0, 7.0], Boundary::Reflecting);
+        assert_eq!(rve_cells(64, &tall), [27, 64, 1]);
+        let solid = Domain::new([3.0, 7.0, 5.0], Boundary::Periodic);
+        assert_eq!(rve_cells(64, &solid), proportional_cells(64, solid.size));
     }
 
     #[test]

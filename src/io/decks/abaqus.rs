@@ -14,9 +14,19 @@
 //! `H`, and the reaction force on `RPX` is the total force on the face `x = Lx`. Each
 //! far node is the first (dependent) term of exactly one equation and never a term's
 //! image, so the equations are independent.
+//!
+//! # Two dimensions
+//! A 2D grid (one layer of pixels) is written as its plane: CPE4 quadrilaterals,
+//! element `1 + i + Nx j` on pixel `(i, j)`, node `1 + i + (Nx+1) j` at `(i hx, j hy)`
+//! (the numbers of the 3D formulas at `k = 0`), reference nodes `RPX`, `RPY`, and the
+//! same equations on the two in-plane components (`super::boundary` writes both).
 
+use super::boundary::{
+    axes, last_layer, node, reference_nodes, write_equations, write_list, write_node_sets, AXES,
+};
 use super::damask::PLACEHOLDER_ELASTIC;
 use super::names::{matrix_name, section_name};
+use crate::contact::Dimension;
 use crate::io::voxel::VoxelGrid;
 use crate::packing::PackedGrain;
 use crate::scene::{quaternion_to_euler, Elastic, RveFill, Scene};
@@ -34,8 +44,9 @@ pub const STEP_MARKER: &str = "** ---- step template";
 /// The strain of the template step (uniaxial along x).
 pub const TEMPLATE_STRAIN: f64 = 1e-3;
 
-/// Abaqus' limit of entries per data line of a set.
-const PER_LINE: usize = 16;
+/// The thickness of the plane-strain sections of a 2D deck (in the scene's length
+/// unit): forces are per unit thickness.
+pub const PLANE_THICKNESS: f64 = 1.0;
 
 /// Writes `rve.inp` for `grid`: nodes, elements, an element set per grain
 /// (`GRAIN_k`, grains without voxels skipped) and per phase (`PHASE<i>_<NAME>`,
@@ -45,45 +56,70 @@ const PER_LINE: usize = 16;
 /// elastic constants, and a static step in uniaxial strain along x. Every number is in
 /// the scene's units (`[units]`, named in a comment at the top): coordinates in
 /// `units.length`, moduli in `units.stress`.
+///
+/// A 2D grid (one layer of pixels) gives the plane-strain deck: CPE4 elements on the
+/// pixels, nodes `(x, y)` numbered as the `k = 0` plane of the 3D grid, the edges
+/// `X0`, `X1`, `Y0`, `Y1` and four corners, reference nodes `RPX`, `RPY`, equations
+/// on the two in-plane components, sections of thickness 1 (the out-of-plane strain is
+/// zero), and a step in uniaxial stress along x (`RPY` free along y).
 pub fn write_abaqus_deck(out: &mut dyn Write, scene: &Scene, grid: &VoxelGrid) -> io::Result<()> {
     let [nx, ny, nz] = grid.cells;
     let h = grid.spacing();
     let size = grid.size;
+    let plane = grid.dimension == Dimension::Two;
+    let element = if plane { "CPE4" } else { "C3D8" };
     writeln!(out, "*Heading")?;
-    writeln!(
-        out,
-        "grainpack voxel RVE: {nx} x {ny} x {nz} C3D8 elements, box {} x {} x {} {}, {}",
-        size[0],
-        size[1],
-        size[2],
-        scene.units.length.symbol(),
-        if grid.periodic {
-            "periodic"
-        } else {
-            "not periodic"
-        }
-    )?;
+    let periodic = if grid.periodic {
+        "periodic"
+    } else {
+        "not periodic"
+    };
+    let unit = scene.units.length.symbol();
+    if plane {
+        writeln!(
+            out,
+            "grainpack pixel RVE: {nx} x {ny} {element} elements (plane strain, thickness 1), \
+             rectangle {} x {} {unit}, {periodic}",
+            size[0], size[1]
+        )?;
+    } else {
+        writeln!(
+            out,
+            "grainpack voxel RVE: {nx} x {ny} x {nz} {element} elements, box {} x {} x {} {unit}, \
+             {periodic}",
+            size[0], size[1], size[2]
+        )?;
+    }
     let (length, stress) = (scene.units.length.symbol(), scene.units.stress.symbol());
     writeln!(
         out,
         "** units (the scene's [units]): lengths in {length}, stresses and E in {stress}, \
          forces in {stress}*{length}^2"
     )?;
-    writeln!(
-        out,
-        "** element 1 + i + Nx (j + Ny k) is cell (i, j, k) of rve.vti;"
-    )?;
-    writeln!(
-        out,
-        "** node 1 + i + (Nx+1)(j + (Ny+1) k) lies at (i hx, j hy, k hz)."
-    )?;
+    if plane {
+        writeln!(out, "** element 1 + i + Nx j is cell (i, j, 0) of rve.vti;")?;
+        writeln!(out, "** node 1 + i + (Nx+1) j lies at (i hx, j hy).")?;
+    } else {
+        writeln!(
+            out,
+            "** element 1 + i + Nx (j + Ny k) is cell (i, j, k) of rve.vti;"
+        )?;
+        writeln!(
+            out,
+            "** node 1 + i + (Nx+1)(j + (Ny+1) k) lies at (i hx, j hy, k hz)."
+        )?;
+    }
     writeln!(out, "*Node")?;
-    for k in 0..=nz {
+    for k in 0..=last_layer(grid) {
         for j in 0..=ny {
             for i in 0..=nx {
                 let id = node(grid, i, j, k);
                 let (x, y, z) = (i as f64 * h[0], j as f64 * h[1], k as f64 * h[2]);
-                writeln!(out, "{id}, {x:?}, {y:?}, {z:?}")?;
+                if plane {
+                    writeln!(out, "{id}, {x:?}, {y:?}")?;
+                } else {
+                    writeln!(out, "{id}, {x:?}, {y:?}, {z:?}")?;
+                }
             }
         }
     }
@@ -91,17 +127,28 @@ pub fn write_abaqus_deck(out: &mut dyn Write, scene: &Scene, grid: &VoxelGrid) -
     for (d, id) in rp.iter().enumerate() {
         let mut at = [0.0; 3];
         at[d] = size[d];
-        writeln!(out, "{id}, {:?}, {:?}, {:?}", at[0], at[1], at[2])?;
+        if plane {
+            writeln!(out, "{id}, {:?}, {:?}", at[0], at[1])?;
+        } else {
+            writeln!(out, "{id}, {:?}, {:?}, {:?}", at[0], at[1], at[2])?;
+        }
     }
-    writeln!(out, "*Element, type=C3D8")?;
+    writeln!(out, "*Element, type={element}")?;
     for k in 0..nz {
         for j in 0..ny {
             for i in 0..nx {
                 let n = |a, b, c| node(grid, i + a, j + b, k + c);
+                let e = grid.index(i, j, k) + 1;
+                if plane {
+                    // Counter-clockwise, as Abaqus numbers a quadrilateral.
+                    let [a, b, c, d] = [n(0, 0, 0), n(1, 0, 0), n(1, 1, 0), n(0, 1, 0)];
+                    writeln!(out, "{e}, {a}, {b}, {c}, {d}")?;
+                    continue;
+                }
                 writeln!(
                     out,
                     "{}, {}, {}, {}, {}, {}, {}, {}, {}",
-                    grid.index(i, j, k) + 1,
+                    e,
                     n(0, 0, 0),
                     n(1, 0, 0),
                     n(1, 1, 0),
@@ -126,20 +173,43 @@ pub fn write_abaqus_deck(out: &mut dyn Write, scene: &Scene, grid: &VoxelGrid) -
         })?;
     }
     write_node_sets(out, grid)?;
-    let names = ["RPX", "RPY", "RPZ"];
-    for (name, id) in names.iter().zip(rp) {
+    let names: Vec<String> = AXES[..axes(grid)]
+        .iter()
+        .map(|a| format!("RP{a}"))
+        .collect();
+    for (name, id) in names.iter().zip(&rp) {
         writeln!(out, "*Nset, nset={name}\n{id}")?;
     }
-    writeln!(out, "*Nset, nset=RP\nRPX, RPY, RPZ")?;
+    writeln!(out, "*Nset, nset=RP\n{}", names.join(", "))?;
     if grid.periodic {
-        write_equations(out, grid, rp)?;
+        write_equations(out, grid, &rp)?;
     }
     for (name, _, elastic) in solids(scene, grid) {
         writeln!(out, "*Material, name={name}")?;
         writeln!(out, "*Elastic")?;
         writeln!(out, "{:?}, {:?}", elastic.young, elastic.poisson)?;
-        writeln!(out, "*Solid Section, elset={name}, material={name}")?;
+        write_section(out, grid, &name)?;
     }
+    if plane {
+        write_plane_step(out, grid)
+    } else {
+        write_solid_step(out, grid)
+    }
+}
+
+/// `*Solid Section` of `elset` with the material of the same name; a plane-strain
+/// section's data line is its thickness, 1.
+fn write_section(out: &mut dyn Write, grid: &VoxelGrid, elset: &str) -> io::Result<()> {
+    writeln!(out, "*Solid Section, elset={elset}, material={elset}")?;
+    if grid.dimension == Dimension::Two {
+        writeln!(out, "{PLANE_THICKNESS:?}")?;
+    }
+    Ok(())
+}
+
+/// The 3D step template: uniaxial strain along x.
+fn write_solid_step(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
+    let size = grid.size;
     writeln!(
         out,
         "{STEP_MARKER}: uniaxial strain {TEMPLATE_STRAIN:e} along x"
@@ -166,6 +236,33 @@ pub fn write_abaqus_deck(out: &mut dyn Write, scene: &Scene, grid: &VoxelGrid) -
         writeln!(out, "X1, 1, 1, {:?}", TEMPLATE_STRAIN * size[0])?;
         writeln!(out, "*Node Print, nset=X1, totals=only\nRF")?;
     }
+    writeln!(out, "*End Step")
+}
+
+/// The 2D step template: the normal strain along x imposed, the normal stress along y
+/// free (zero), the shear held at zero; plane strain (zero strain along z) by the
+/// elements. The normal stress along x over the strain is the plane-strain modulus
+/// `E/(1 − ν²)` of a homogeneous RVE.
+fn write_plane_step(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
+    let size = grid.size;
+    writeln!(
+        out,
+        "{STEP_MARKER}: uniaxial stress along x, strain {TEMPLATE_STRAIN:e}, plane strain"
+    )?;
+    writeln!(out, "*Boundary")?;
+    writeln!(out, "{}, 1, 2, 0.0", node(grid, 0, 0, 0))?;
+    writeln!(out, "*Step")?;
+    writeln!(out, "*Static")?;
+    writeln!(out, "*Boundary")?;
+    if grid.periodic {
+        writeln!(out, "RPX, 1, 1, {:?}", TEMPLATE_STRAIN * size[0])?;
+        writeln!(out, "RPX, 2, 2, 0.0\nRPY, 1, 1, 0.0")?;
+        writeln!(out, "*Node Print, nset=RP\nU")?;
+    } else {
+        writeln!(out, "X0, 1, 1, 0.0\nY0, 2, 2, 0.0")?;
+        writeln!(out, "X1, 1, 1, {:?}", TEMPLATE_STRAIN * size[0])?;
+    }
+    writeln!(out, "*Node Print, nset=X1, totals=only\nRF")?;
     writeln!(out, "*End Step")
 }
 
@@ -201,7 +298,7 @@ pub fn write_umat_sections(
             "*User Material, constants=4\n{}, {p1:?}, {p:?}, {p2:?}",
             g.phase
         )?;
-        writeln!(out, "*Solid Section, elset={name}, material={name}")?;
+        write_section(out, grid, &name)?;
     }
     if let Some((name, _, _)) = solids(scene, grid)
         .into_iter()
@@ -213,21 +310,9 @@ pub fn write_umat_sections(
             "*User Material, constants=4\n{}, 0.0, 0.0, 0.0",
             grid.phases
         )?;
-        writeln!(out, "*Solid Section, elset={name}, material={name}")?;
+        write_section(out, grid, &name)?;
     }
     Ok(())
-}
-
-/// Node id of grid node `(i, j, k)`.
-fn node(grid: &VoxelGrid, i: usize, j: usize, k: usize) -> usize {
-    let [nx, ny, _] = grid.cells;
-    1 + i + (nx + 1) * (j + (ny + 1) * k)
-}
-
-fn reference_nodes(grid: &VoxelGrid) -> [usize; 3] {
-    let [nx, ny, nz] = grid.cells;
-    let last = (nx + 1) * (ny + 1) * (nz + 1);
-    [last + 1, last + 2, last + 3]
 }
 
 /// The element sets with material: `(name, phase number, elastic constants)` of each
@@ -293,89 +378,4 @@ fn write_grain_sets(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
         }
     }
     Ok(())
-}
-
-/// Faces, edges and corners: each of the 26 sets fixes one, two or three indices at
-/// 0 or at the far end, the others run over their whole range.
-fn write_node_sets(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
-    let n = grid.cells;
-    for fixed in 1..=3 {
-        for mask in 0..27u32 {
-            // Per axis: 0 free, 1 near face, 2 far face.
-            let sides = [mask % 3, (mask / 3) % 3, mask / 9];
-            if sides.iter().filter(|&&s| s != 0).count() != fixed {
-                continue;
-            }
-            let mut name = String::new();
-            let range = |a: usize| match sides[a] {
-                0 => 0..=n[a],
-                1 => 0..=0,
-                _ => n[a]..=n[a],
-            };
-            for (a, axis) in ["X", "Y", "Z"].iter().enumerate() {
-                if sides[a] != 0 {
-                    name.push_str(axis);
-                    name.push(if sides[a] == 1 { '0' } else { '1' });
-                }
-            }
-            let ids = range(2).flat_map(move |k| {
-                range(1).flat_map(move |j| range(0).map(move |i| node(grid, i, j, k)))
-            });
-            write_list(out, &format!("*Nset, nset={name}"), ids)?;
-        }
-    }
-    Ok(())
-}
-
-/// The periodic equations (see the module's docs), at most four terms per line.
-fn write_equations(out: &mut dyn Write, grid: &VoxelGrid, rp: [usize; 3]) -> io::Result<()> {
-    let [nx, ny, nz] = grid.cells;
-    writeln!(out, "*Equation")?;
-    for k in 0..=nz {
-        for j in 0..=ny {
-            for i in 0..=nx {
-                let far = [i == nx, j == ny, k == nz];
-                if !far.iter().any(|&f| f) {
-                    continue;
-                }
-                let image = node(grid, i % nx, j % ny, k % nz);
-                let me = node(grid, i, j, k);
-                for dof in 1..=3 {
-                    let mut terms = vec![(me, 1.0), (image, -1.0)];
-                    terms.extend((0..3).filter(|&d| far[d]).map(|d| (rp[d], -1.0)));
-                    writeln!(out, "{}", terms.len())?;
-                    for line in terms.chunks(4) {
-                        let text: Vec<String> = line
-                            .iter()
-                            .map(|(n, c)| format!("{n}, {dof}, {c:?}"))
-                            .collect();
-                        writeln!(out, "{}", text.join(", "))?;
-                    }
-                }
-            }
-        }
-    }
-    Ok(())
-}
-
-/// `header`, then the ids, [`PER_LINE`] to a line.
-fn write_list(
-    out: &mut dyn Write,
-    header: &str,
-    ids: impl Iterator<Item = usize>,
-) -> io::Result<()> {
-    writeln!(out, "{header}")?;
-    let mut on_line = 0;
-    for id in ids {
-        if on_line == PER_LINE {
-            writeln!(out)?;
-            on_line = 0;
-        }
-        if on_line > 0 {
-            write!(out, ", ")?;
-        }
-        write!(out, "{id}")?;
-        on_line += 1;
-    }
-    writeln!(out)
 }

@@ -1,6 +1,7 @@
 //! DAMASK's `material.yaml` and a `load.yaml` template, beside `rve.vti`.
 
 use super::names::matrix_name;
+use crate::contact::Dimension;
 use crate::io::voxel::VoxelGrid;
 use crate::packing::PackedGrain;
 use crate::scene::{Elastic, Homogenization, RveFill, Scene, Units};
@@ -189,17 +190,33 @@ fn json(s: &str) -> String {
 
 /// Writes `load.yaml`, a template for DAMASK's grid solver: uniaxial tension along x
 /// at a strain rate of 10⁻³/s to 1 % (10 s in 20 increments), the other normal
-/// stresses and the shear zero.
+/// stresses and the shear zero. For a 2D grid (one layer of cells along z) the load is
+/// plane strain, as the plane-strain deck `rve.inp`: `F_zz` held at 1 (no rate), the
+/// out-of-plane shears at zero, only `P_yy` free of load besides x; the comment says
+/// how to free `F_zz` instead (generalised plane strain, `P_zz = 0`).
 pub fn write_load_yaml(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
     let [nx, ny, nz] = grid.cells;
+    let plane = grid.dimension == Dimension::Two;
     writeln!(
         out,
-        "# DAMASK load case template written by grainpack for rve.vti ({nx} x {ny} x {nz} cells):"
+        "# DAMASK load case template written by grainpack for rve.vti ({nx} x {ny} x {nz} cells{}):",
+        if plane { ", a 2D grid" } else { "" }
     )?;
-    writeln!(
-        out,
-        "# uniaxial tension along x, 1e-3/s for 10 s (1 % strain), P = 0 elsewhere."
-    )?;
+    if plane {
+        writeln!(
+            out,
+            "# uniaxial tension along x in plane strain, 1e-3/s for 10 s (1 % strain), P = 0 along y;"
+        )?;
+        writeln!(
+            out,
+            "# F_zz stays 1. For generalised plane strain, free it: dot_F zz -> x, P zz -> 0."
+        )?;
+    } else {
+        writeln!(
+            out,
+            "# uniaxial tension along x, 1e-3/s for 10 s (1 % strain), P = 0 elsewhere."
+        )?;
+    }
     writeln!(
         out,
         "# Run: DAMASK_grid --load load.yaml --geom rve.vti --material material.yaml"
@@ -209,8 +226,13 @@ pub fn write_load_yaml(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> 
     writeln!(out, "loadstep:")?;
     writeln!(out, "  - boundary_conditions:")?;
     writeln!(out, "      mechanical:")?;
-    writeln!(out, "        dot_F: [[1.0e-3, 0, 0], [0, x, 0], [0, 0, x]]")?;
-    writeln!(out, "        P: [[x, x, x], [x, 0, x], [x, x, 0]]")?;
+    if plane {
+        writeln!(out, "        dot_F: [[1.0e-3, 0, 0], [0, x, 0], [0, 0, 0]]")?;
+        writeln!(out, "        P: [[x, x, x], [x, 0, x], [x, x, x]]")?;
+    } else {
+        writeln!(out, "        dot_F: [[1.0e-3, 0, 0], [0, x, 0], [0, 0, x]]")?;
+        writeln!(out, "        P: [[x, x, x], [x, 0, x], [x, x, 0]]")?;
+    }
     writeln!(out, "    discretization: {{t: 10, N: 20}}")?;
     writeln!(out, "    f_out: 4")
 }

@@ -8,10 +8,11 @@
 //! `rve_fill = "matrix"` last.
 
 mod abaqus;
+mod boundary;
 mod damask;
 mod names;
 
-pub use abaqus::{write_abaqus_deck, write_umat_sections, RVE_INP, RVE_UMAT_INP};
+pub use abaqus::{write_abaqus_deck, write_umat_sections, PLANE_THICKNESS, RVE_INP, RVE_UMAT_INP};
 pub use damask::{
     write_load_yaml, write_material_yaml, LOAD_YAML, MATERIAL_YAML, PLACEHOLDER_ELASTIC,
 };

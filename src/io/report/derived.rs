@@ -3,11 +3,11 @@
 //! (`statistics.png`). The RVE's totals are returned for the summary.
 
 use super::{OutputFiles, ReportError};
-use crate::contact::{dot, rotation_column, sphere_diameter};
+use crate::contact::{dot, rotation_column, sphere_diameter, Dimension};
 use crate::io::plots::{render_run_statistics_png, VoxelSample};
 use crate::io::texture::TextureMeasure;
 use crate::io::voxel::{
-    grain_report, voxelise, write_sections_png, write_vti, VoxelGrid, VoxelReport,
+    grain_report, voxelise, write_sections_png, write_vti, VoxelGrid, VoxelReport, VoxelShape,
 };
 use crate::packing::PackedGrain;
 use crate::run::PhaseStatistics;
@@ -78,10 +78,15 @@ pub struct RveSummary {
     pub matrix_fraction: f64,
     /// Seconds to voxelise.
     pub voxelise_seconds: f64,
+    /// For a 2D pixel RVE (one layer along z), the layer's z edge in `rve.vti`
+    /// ([`layer_thickness`](crate::io::voxel::layer_thickness), in the scene's length
+    /// unit); absent in 3D. Every volume above is then an area.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layer_thickness: Option<f64>,
 }
 
 impl RveSummary {
-    fn new(report: &VoxelReport, grains: usize, seconds: f64) -> Self {
+    fn new(grid: &VoxelGrid, report: &VoxelReport, grains: usize, seconds: f64) -> Self {
         Self {
             cells: report.cells,
             fill: report.fill,
@@ -94,6 +99,7 @@ impl RveSummary {
             empty_grains: report.empty_grains.len(),
             matrix_fraction: report.matrix_fraction,
             voxelise_seconds: seconds,
+            layer_thickness: (grid.dimension == Dimension::Two).then_some(grid.size[2]),
         }
     }
 }
@@ -138,7 +144,7 @@ pub fn write_derived(
                 .map_err(|e| files.error(SECTIONS_PNG, io::Error::other(e)))?;
             files.record(path);
         }
-        summary = Some(RveSummary::new(&report, grains.len(), seconds));
+        summary = Some(RveSummary::new(&grid, &report, grains.len(), seconds));
         samples = Some(voxel_samples(&report, grains, phases));
     }
     if output.statistics_png {
@@ -215,6 +221,9 @@ fn voxel_samples(
             let rest: Vec<usize> = (0..3).filter(|&m| m != k).collect();
             let others: Vec<f64> = rest.iter().map(|&m| shape.semi_axes[m]).collect();
             let a1 = shape.semi_axes[k];
+            if report.dimension == Dimension::Two {
+                return Some(plane_sample(g, shape, k, v.voxel_volume));
+            }
             let a2 = (others[0] * others[1]).sqrt();
             let axis = shape.axes[k];
             let axis = if dot(&axis, &first) < 0.0 {
@@ -256,6 +265,21 @@ fn voxel_samples(
             })
         })
         .collect()
+}
+
+/// A 2D pixel grain measured like the packed ellipse: the equivalent circle of its
+/// area, and `a1/a2` from its moment ellipse (`semi_axes` `[a_max, √(a1 a2), a_min]`;
+/// `k`, 0 or 2, the in-plane axis nearest the packed first axis, `2 − k` the other).
+/// The angle panels of 2D scenes take no voxel samples (`tilt` and `spin` are `None`).
+fn plane_sample(g: &PackedGrain, shape: &VoxelShape, k: usize, area: f64) -> VoxelSample {
+    VoxelSample {
+        phase: g.phase,
+        equivalent_diameter: Dimension::Two.diameter_of(area),
+        aspect_ratio: shape.semi_axes[k] / shape.semi_axes[2 - k],
+        tilt: None,
+        shape_ratios: None,
+        spin: None,
+    }
 }
 
 #[cfg(test)]

@@ -13,6 +13,12 @@ pub enum VoxelError {
         /// Axis 0–2.
         axis: usize,
     },
+    /// A 2D box asked for more than one layer of cells along z.
+    #[error("a 2D grid has one layer of cells along z, not {cells}")]
+    PlaneLayers {
+        /// The cells asked for along z.
+        cells: usize,
+    },
     /// The grid is larger than a 32-bit signed index can address.
     #[error("{cells:?} voxels are too many: at most {max} cells in all")]
     TooManyCells {

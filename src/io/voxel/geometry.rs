@@ -2,7 +2,7 @@
 //! `t²` from the same numbers in the same order and agree to the last bit.
 
 use super::{VoxelError, VoxelGrid};
-use crate::contact::{rotation_matrix, Ellipsoid};
+use crate::contact::{rotation_matrix, Dimension, Ellipsoid};
 use crate::octree::wrap_coordinate;
 use crate::packing::PackedGrain;
 use crate::scene::RveFill;
@@ -24,6 +24,7 @@ pub(super) struct Lattice {
     /// Cell edge `L/N`.
     pub h: [f64; 3],
     pub periodic: bool,
+    pub dimension: Dimension,
 }
 
 impl Lattice {
@@ -37,6 +38,10 @@ impl Lattice {
             if n == 0 {
                 return Err(VoxelError::ZeroCells { axis });
             }
+        }
+        // A 2D grid is one layer, centred on the grains' plane z = Lz/2.
+        if domain.dimension == Dimension::Two && cells[2] != 1 {
+            return Err(VoxelError::PlaneLayers { cells: cells[2] });
         }
         let total = cells
             .iter()
@@ -53,6 +58,7 @@ impl Lattice {
             size: domain.size,
             h: [0, 1, 2].map(|a| domain.size[a] / cells[a] as f64),
             periodic: domain.boundary == Boundary::Periodic,
+            dimension: domain.dimension,
         })
     }
 
@@ -68,7 +74,8 @@ impl Lattice {
         c + k as f64 * self.size[axis]
     }
 
-    /// The grid with its materials, phases filled in from `forms`.
+    /// The grid with its materials, phases filled in from `forms`; in 2D its z edge is
+    /// the layer's thickness ([`layer_thickness`](super::layer_thickness)).
     pub fn into_grid(
         self,
         fill: RveFill,
@@ -82,9 +89,14 @@ impl Lattice {
             .par_iter()
             .map(|&m| forms.get(m as usize).map_or(matrix_phase, |f| f.phase))
             .collect();
+        let mut size = self.size;
+        if self.dimension == Dimension::Two {
+            size[2] = super::layer_thickness(self.h[0], self.h[1]);
+        }
         VoxelGrid {
             cells: self.cells,
-            size: self.size,
+            size,
+            dimension: self.dimension,
             periodic: self.periodic,
             fill,
             grains: forms.len(),

@@ -6,6 +6,18 @@
 //! `damask.GeomGrid.load` reads; [`grain_report`] compares each voxel grain with its
 //! ellipsoid; [`write_sections_png`] draws three orthogonal mid-sections.
 //!
+//! # Two dimensions
+//! A 2D box (ellipses in a rectangle, [`Domain::plane`](crate::scene::Domain::plane))
+//! gives a pixel image: one layer of cells along z (`cells = [Nx, Ny, 1]`), as DAMASK's
+//! grid solver takes a 2D (plane) grid. The layer is rasterised by the same code at
+//! its centre, the grains' plane `z = Lz/2`, where each ellipsoid's `t` is its
+//! ellipse's (the embedded form is block diagonal: `t² = dᵀ P d` with `d_z = 0` is the
+//! 2×2 form of the ellipse), so a pixel belongs to the ellipse containing its centre.
+//! The grid's z edge is then the layer's thickness [`layer_thickness`] (`√(hx hy)`, a
+//! cube for square pixels), not the slab's `Lz`. Pieces are 4-connected (the 6
+//! neighbours of a cell less the two along z, which are itself), and the report
+//! measures areas (see [`grain_report`]).
+//!
 //! # Which grain a voxel belongs to
 //! Grain `g` with centre `c` and quadratic form `Q = R diag(a²) Rᵀ` reaches `x` when
 //! scaled by `t_g(x) = √((x − c)ᵀ Q⁻¹ (x − c))`: inside the grain `t ≤ 1`. In a periodic
@@ -85,15 +97,25 @@ pub use report::{grain_report, GrainVoxels, VoxelReport};
 pub use sections::write_sections_png;
 pub use vti::{write_vti, EULER_ARRAYS};
 
+use crate::contact::Dimension;
 use crate::scene::RveFill;
+
+/// The z edge of a 2D grid's one layer of cells: `√(hx hy)` for pixels of edges `hx`,
+/// `hy`, so that the cells are cubes when the pixels are square.
+pub fn layer_thickness(hx: f64, hy: f64) -> f64 {
+    (hx * hy).sqrt()
+}
 
 /// The voxel grid: a material and a phase number per cell, x fastest, then y, then z.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VoxelGrid {
     /// Cells along x, y and z.
     pub cells: [usize; 3],
-    /// Edge lengths of the box `[Lx, Ly, Lz]`; the grid's origin is 0.
+    /// Edge lengths of the box `[Lx, Ly, Lz]`; the grid's origin is 0. In 2D, `Lz` is
+    /// the thickness of the one layer ([`layer_thickness`]).
     pub size: [f64; 3],
+    /// A box of grains (3D) or a pixel image of one layer (2D).
+    pub dimension: Dimension,
     /// Whether the box (and so the field) is periodic.
     pub periodic: bool,
     /// How the gaps were filled.
@@ -129,9 +151,13 @@ impl VoxelGrid {
         [0, 1, 2].map(|a| self.size[a] / self.cells[a] as f64)
     }
 
-    /// Volume of one cell.
+    /// Volume of one cell; in 2D the area of one pixel `hx hy`.
     pub fn voxel_volume(&self) -> f64 {
-        self.spacing().iter().product()
+        let h = self.spacing();
+        match self.dimension {
+            Dimension::Two => h[0] * h[1],
+            Dimension::Three => h.iter().product(),
+        }
     }
 
     /// The matrix's material number `n` (used by no cell when `fill = grains`).

@@ -2,9 +2,9 @@
 
 use super::spans::RowSpans;
 use super::VoxelGrid;
-use crate::contact::{rotation_matrix, sphere_diameter};
+use crate::contact::{rotation_matrix, Dimension, PLANE_NORMAL};
 use crate::packing::PackedGrain;
-use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+use nalgebra::{Matrix2, Matrix3, SymmetricEigen, Vector3};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -12,11 +12,14 @@ use serde::Serialize;
 /// grain (each voxel a uniform cube, so its own moment `h²/12` is included).
 ///
 /// A solid ellipsoid's covariance has eigenvalues `a_k² / 5`, so `a_k = √(5 λ_k)`.
+/// In 2D, the solid ellipse of the same in-plane moments (eigenvalues `a_k² / 4`, so
+/// `a_k = 2 √λ_k`), given as the ellipsoid it embeds in (`[a1, √(a1 a2), a2]`, the
+/// third axis along z in the middle), with the circle's equivalent diameter.
 /// Voxels are unwrapped around the grain centre (nearest image, per axis): a grain
 /// whose voxels span more than half the box along an axis is not unwrapped correctly.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct VoxelShape {
-    /// `(6 V / π)^⅓` of the voxel volume.
+    /// `(6 V / π)^⅓` of the voxel volume (`√(4 A / π)` of the pixel area in 2D).
     pub equivalent_diameter: f64,
     /// Semi-axes `√(5 λ_k)`, largest first.
     pub semi_axes: [f64; 3],
@@ -84,8 +87,14 @@ impl Moments {
         }
     }
 
-    /// The solid ellipsoid of the same moments; `None` without voxels.
-    pub fn shape(&self, g: &PackedGrain, h: [f64; 3], volume: f64) -> Option<VoxelShape> {
+    /// The solid ellipsoid (ellipse in 2D) of the same moments; `None` without voxels.
+    pub fn shape(
+        &self,
+        g: &PackedGrain,
+        h: [f64; 3],
+        volume: f64,
+        dimension: Dimension,
+    ) -> Option<VoxelShape> {
         if self.count == 0 {
             return None;
         }
@@ -99,15 +108,12 @@ impl Moments {
             cov[(a, b)] = (c + own) * h[a] * h[b];
             cov[(b, a)] = cov[(a, b)];
         }
-        let eigen = SymmetricEigen::new(cov);
-        let mut order = [0, 1, 2];
-        order.sort_by(|&i, &j| eigen.eigenvalues[j].total_cmp(&eigen.eigenvalues[i]));
-        let semi_axes = order.map(|k| (5.0 * eigen.eigenvalues[k].max(0.0)).sqrt());
-        let axes = order.map(|k| {
-            let v = eigen.eigenvectors.column(k);
-            [v[0], v[1], v[2]]
-        });
-        let offset: f64 = (0..3)
+        let (semi_axes, axes) = match dimension {
+            Dimension::Three => solid_axes(cov),
+            Dimension::Two => plane_axes(cov.fixed_view::<2, 2>(0, 0).into_owned()),
+        };
+        // In 2D the layer's z says nothing about the grain: the offset is in the plane.
+        let offset: f64 = (0..dimension.exponent() as usize)
             .map(|a| {
                 let mean = self.sum[a] as f64 / nf + 0.5;
                 ((mean - self.centre[a]) * h[a]).powi(2)
@@ -116,7 +122,7 @@ impl Moments {
         let major = ellipsoid_major_axis(g);
         let cos = (0..3).map(|a| axes[0][a] * major[a]).sum::<f64>().abs();
         Some(VoxelShape {
-            equivalent_diameter: sphere_diameter(volume),
+            equivalent_diameter: dimension.diameter_of(volume),
             semi_axes,
             axes,
             aspect_ratio: semi_axes[0] / semi_axes[2],
@@ -127,6 +133,40 @@ impl Moments {
             centroid_offset: offset.sqrt(),
         })
     }
+}
+
+/// Semi-axes `√(5 λ_k)` of the covariance `cov`, largest first, and their directions.
+fn solid_axes(cov: Matrix3<f64>) -> ([f64; 3], [[f64; 3]; 3]) {
+    let eigen = SymmetricEigen::new(cov);
+    let mut order = [0, 1, 2];
+    order.sort_by(|&i, &j| eigen.eigenvalues[j].total_cmp(&eigen.eigenvalues[i]));
+    let semi_axes = order.map(|k| (5.0 * eigen.eigenvalues[k].max(0.0)).sqrt());
+    let axes = order.map(|k| {
+        let v = eigen.eigenvectors.column(k);
+        [v[0], v[1], v[2]]
+    });
+    (semi_axes, axes)
+}
+
+/// Semi-axes `2 √λ_k` of the in-plane covariance `cov` as the embedded ellipsoid's,
+/// `[a1, √(a1 a2), a2]` with `a1 ≥ a2`, and their directions (z for the middle one).
+fn plane_axes(cov: Matrix2<f64>) -> ([f64; 3], [[f64; 3]; 3]) {
+    let eigen = SymmetricEigen::new(cov);
+    let (big, small) = if eigen.eigenvalues[0] >= eigen.eigenvalues[1] {
+        (0, 1)
+    } else {
+        (1, 0)
+    };
+    let semi = |k: usize| 2.0 * eigen.eigenvalues[k].max(0.0).sqrt();
+    let axis = |k: usize| {
+        let v = eigen.eigenvectors.column(k);
+        [v[0], v[1], 0.0]
+    };
+    let (a1, a2) = (semi(big), semi(small));
+    (
+        [a1, (a1 * a2).sqrt(), a2],
+        [axis(big), PLANE_NORMAL, axis(small)],
+    )
 }
 
 /// The direction of the grain's largest semi-axis: that column of its rotation.

@@ -1,4 +1,6 @@
 //! Connected pieces of each material: 6-connectivity, across the faces of a periodic box.
+//! A 2D grid (one layer along z) has no neighbour along z but the cell itself, so there
+//! the same code gives 4-connectivity in the plane.
 //!
 //! Each row along x is cut into spans of one material; spans are joined (union–find) with
 //! the overlapping spans of the same material in the rows below in y and in z, and, in a
@@ -127,6 +129,7 @@ mod tests {
         VoxelGrid {
             cells,
             size: cells.map(|n| n as f64),
+            dimension: crate::contact::Dimension::Three,
             periodic,
             fill: RveFill::Matrix,
             grains: 2,
@@ -166,6 +169,16 @@ mod tests {
             counts(count_pieces_of(&grid([2, 2, 1], false, m), 2)),
             [2, 2]
         );
+    }
+
+    #[test]
+    fn pixels_of_one_layer_are_four_connected_even_periodic() {
+        // 3×3 periodic pixels: material 0 on the diagonal, 1 elsewhere. The diagonal
+        // pixels touch only at corners (also across the faces), so they stay apart;
+        // material 1's six pixels join through the faces into one piece.
+        let m = vec![0, 1, 1, 1, 0, 1, 1, 1, 0];
+        let p = count_pieces_of(&grid([3, 3, 1], true, m), 2);
+        assert_eq!(counts(p), [3, 1]);
     }
 
     #[test]

@@ -5,14 +5,17 @@ use super::moments::{moments, VoxelShape};
 use super::pieces::count_pieces;
 use super::spans::RowSpans;
 use super::{VoxelError, VoxelGrid};
-use crate::contact;
+use crate::contact::Dimension;
 use crate::packing::PackedGrain;
 use crate::scene::RveFill;
 
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// One grain as the voxels show it, next to the ellipsoid it came from.
+/// One grain as the voxels show it, next to the ellipsoid it came from. In 2D every
+/// volume is an area (pixels × `hx hy`, the ellipse's `π a1 a2`), every diameter the
+/// equivalent circle's, and the semi-axes are the embedded ellipsoid's
+/// `[a1, √(a1 a2), a2]` (so the aspect ratio is the ellipse's `a1/a2`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GrainVoxels {
     /// The grain's id.
@@ -62,8 +65,11 @@ pub struct VoxelReport {
     pub empty_grains: Vec<u32>,
     /// Fraction of the voxels that are matrix.
     pub matrix_fraction: f64,
-    /// Sum of the ellipsoid volumes over the box volume.
+    /// Sum of the ellipsoid volumes over the box volume (areas in 2D).
     pub ellipsoid_fraction: f64,
+    /// Ellipsoids in a box, or ellipses in a rectangle.
+    #[serde(skip)]
+    pub dimension: Dimension,
     /// Per grain, in material order.
     pub grains: Vec<GrainVoxels>,
 }
@@ -82,14 +88,18 @@ pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelRep
     let pieces = count_pieces(grid, &spans, grains.len());
     let h = grid.spacing();
     let vv = grid.voxel_volume();
-    let box_volume: f64 = grid.size.iter().product();
+    let dim = grid.dimension;
+    let box_volume = match dim {
+        Dimension::Two => grid.size[0] * grid.size[1],
+        Dimension::Three => grid.size.iter().product(),
+    };
     let rows: Vec<GrainVoxels> = grains
         .iter()
         .zip(&moments)
         .zip(&pieces)
         .enumerate()
         .map(|(k, ((g, m), p))| {
-            let ellipsoid_volume = contact::ellipsoid_volume(g.semi_axes);
+            let ellipsoid_volume = dim.measure(g.semi_axes);
             let voxel_volume = m.count as f64 * vv;
             let mut axes = g.semi_axes;
             axes.sort_by(|a, b| b.total_cmp(a));
@@ -103,10 +113,10 @@ pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelRep
                 volume_deviation: (voxel_volume - ellipsoid_volume) / ellipsoid_volume,
                 pieces: p.count,
                 stray_voxels: m.count - p.largest,
-                ellipsoid_equivalent_diameter: contact::sphere_diameter(ellipsoid_volume),
+                ellipsoid_equivalent_diameter: dim.diameter_of(ellipsoid_volume),
                 ellipsoid_semi_axes: axes,
                 ellipsoid_aspect_ratio: axes[0] / axes[2],
-                shape: m.shape(g, h, voxel_volume),
+                shape: m.shape(g, h, voxel_volume, dim),
             }
         })
         .collect();
@@ -127,6 +137,7 @@ pub fn grain_report(grid: &VoxelGrid, grains: &[PackedGrain]) -> Result<VoxelRep
             .collect(),
         matrix_fraction: matrix_voxels as f64 / grid.len() as f64,
         ellipsoid_fraction: rows.iter().map(|r| r.ellipsoid_volume).sum::<f64>() / box_volume,
+        dimension: dim,
         grains: rows,
     })
 }

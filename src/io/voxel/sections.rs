@@ -1,6 +1,7 @@
 //! Three orthogonal mid-sections of a voxel grid, as one PNG.
 
 use super::{VoxelError, VoxelGrid};
+use crate::contact::Dimension;
 use crate::scene::RveFill;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -12,7 +13,7 @@ const PANEL_PIXELS: f64 = 420.0;
 const MATRIX: RGBColor = RGBColor(45, 45, 45);
 
 /// Draws the sections `xy` at `z = Lz/2`, `xz` at `y = Ly/2` and `yz` at `x = Lx/2` side
-/// by side, each voxel coloured by its material (a fixed colour per material number,
+/// by side (in 2D only the one layer, `xy`), each voxel coloured by its material (a fixed colour per material number,
 /// the matrix dark grey), with axes in box units, to the PNG `path` (written under a
 /// temporary name and renamed, so a reader never sees half a file).
 ///
@@ -55,7 +56,15 @@ fn draw(grid: &VoxelGrid, file: &Path) -> Result<(), VoxelError> {
             fixed: 0,
         },
     ];
-    let longest = grid.size.iter().copied().fold(0.0, f64::max);
+    // A 2D grid (one layer) has only the xy section.
+    let sections = match grid.dimension {
+        Dimension::Two => &sections[..1],
+        Dimension::Three => &sections[..],
+    };
+    let longest = sections
+        .iter()
+        .flat_map(|s| s.axes.map(|a| grid.size[a]))
+        .fold(0.0, f64::max);
     let scale = PANEL_PIXELS / longest;
     let (left, bottom, top, pad) = (55u32, 45u32, 40u32, 25u32);
     let widths: Vec<u32> = sections

@@ -6,7 +6,7 @@ use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawFill, RawOutput};
 use crate::scene::{
-    proportional_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
+    rve_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
     MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION, MIN_VTK_RESOLUTION,
 };
 use crate::scene::{Boundary, Domain};
@@ -151,7 +151,7 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
             Some(("output.rve_voxel_size", h.span())),
         ),
         // At most DEFAULT_RVE_CELLS³, far below the limit.
-        (None, None) => (proportional(DEFAULT_RVE_CELLS, domain), None),
+        (None, None) => (rve_cells(DEFAULT_RVE_CELLS, domain), None),
     };
     let count: u64 = cells.iter().map(|&n| n as u64).product();
     if let Some((key, at)) = from.filter(|_| count > MAX_RVE_CELLS) {
@@ -186,18 +186,6 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
         fill,
         sections_png,
     }))
-}
-
-/// [`proportional_cells`] along the box's edges; a 2D scene's RVE is one cell thick.
-fn proportional(longest: usize, domain: &Domain) -> [usize; 3] {
-    match domain.dimension {
-        Dimension::Three => proportional_cells(longest, domain.size),
-        Dimension::Two => {
-            let [x, y] = [domain.size[0], domain.size[1]];
-            let [nx, ny, _] = proportional_cells(longest, [x, y, x.max(y)]);
-            [nx, ny, 1]
-        }
-    }
 }
 
 /// `rve_resolution = N` (N cells along the longest edge, proportionally many along
@@ -238,7 +226,7 @@ fn resolution(
             <[usize; 3]>::try_from(cells).map_err(|_| src.invalid_at(key, raw, shape))
         }
         value => match edge(value) {
-            Some(n) => Ok(proportional(n, domain)),
+            Some(n) => Ok(rve_cells(n, domain)),
             None => Err(src.invalid_at(key, raw, shape)),
         },
     }
