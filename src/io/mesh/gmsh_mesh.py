@@ -106,38 +106,91 @@ def images(grain, origin, size, periodic):
     return [(a, b, c) for a in shifts[0] for b in shifts[1] for c in shifts[2]]
 
 
+def ellipsoid(occ, grain, shift):
+    r = quaternion_matrix(grain["quaternion"])
+    a = grain["semi_axes"]
+    s = occ.addSphere(0, 0, 0, 1)
+    m = []
+    for i in range(3):
+        m += [r[i][0] * a[0], r[i][1] * a[1], r[i][2] * a[2], grain["centre"][i] + shift[i]]
+    occ.affineTransform([(3, s)], m)
+    return s
+
+
+def contains(box, lo, hi):
+    return all(box[d] <= lo[d] and hi[d] <= box[d + 3] for d in range(3))
+
+
 def build_geometry(gmsh, job, origin):
+    """The box's volumes: {tag: grain, or None for the matrix}.
+
+    OCC's fragment of the box with every ellipsoid is slow (issue 29: it dominates)
+    and mostly needless, as the grains are disjoint. So each image of a grain that
+    crosses the box is cut to the box alone, and only these pieces, which touch the
+    box's faces but not one another, are fragmented with the box (in OCC's glue mode).
+    The grains inside are added as they are: their surfaces become holes of the
+    matrix volume, which so shares them, and the mesh is conforming."""
     occ = gmsh.model.occ
     size = job["box"]
     box = occ.addBox(origin[0], origin[1], origin[2], size[0], size[1], size[2])
-    tools, owner = [], []
+    tools, owner, inner = [], [], []
     for g in job["grains"]:
-        r = quaternion_matrix(g["quaternion"])
-        a = g["semi_axes"]
-        for t in images(g, origin, size, job["periodic"]):
-            s = occ.addSphere(0, 0, 0, 1)
-            m = []
-            for i in range(3):
-                m += [r[i][0] * a[0], r[i][1] * a[1], r[i][2] * a[2], g["centre"][i] + t[i]]
-            occ.affineTransform([(3, s)], m)
-            tools.append((3, s))
-            owner.append(g)
-    _, children = occ.fragment([(3, box)], tools)
+        shifts = images(g, origin, size, job["periodic"])
+        crossing = job["periodic"] and (len(shifts) > 1 or any(
+            g["centre"][d] + shifts[0][d] - g["extent"][d] < origin[d]
+            or g["centre"][d] + shifts[0][d] + g["extent"][d] > origin[d] + size[d]
+            for d in range(3)))
+        for t in shifts:
+            tag = ellipsoid(occ, g, t)
+            if not crossing:
+                inner.append((tag, g, t))
+                continue
+            # The image's piece in the box, alone: a boolean of one ellipsoid and a box.
+            cutter = occ.addBox(origin[0], origin[1], origin[2], size[0], size[1], size[2])
+            piece, _ = occ.intersect([(3, tag)], [(3, cutter)])
+            for dim_tag in piece:
+                tools.append(dim_tag)
+                owner.append(g)
+    children = [[(3, box)]]
+    if tools:
+        # The pieces only touch the box's faces and one another's never: OCC's glue
+        # mode for arguments that share (parts of) faces is 3x faster.
+        gmsh.option.setNumber("Geometry.OCCBooleanGlue", 1)
+        _, children = occ.fragment([(3, box)], tools)
+        gmsh.option.setNumber("Geometry.OCCBooleanGlue", 0)
     occ.synchronize()
-    inside = {tag for _, tag in children[0]}
-    volumes = {}  # volume tag -> grain (or None: matrix)
-    for tag in inside:
-        volumes[tag] = None
-    outside = set()
+    pieces = {tag for _, tag in children[0]}
+    volumes = {tag: None for tag in pieces}
     for g, kids in zip(owner, children[1:]):
         for _, tag in kids:
-            if tag in inside:
-                volumes[tag] = g
-            else:
-                outside.add(tag)
-    outside -= inside
-    if outside:
-        gmsh.model.removeEntities([(3, t) for t in sorted(outside)], recursive=True)
+            if tag not in pieces:
+                raise MeshError(f"a piece of grain {g['id']} lies outside the box")
+            volumes[tag] = g
+    matrix = [t for t, g in volumes.items() if g is None]
+    holes = {t: [] for t in matrix}
+    # The matrix piece of an inner grain: of those whose bounding box holds the grain's,
+    # the largest (the box's matrix; the others are pockets the crossing grains cut
+    # off at the box's faces, too small to hold a grain).
+    mass = {t: occ.getMass(3, t) for t in matrix}
+    for tag, g, t in inner:
+        lo = [g["centre"][d] + t[d] - g["extent"][d] for d in range(3)]
+        hi = [g["centre"][d] + t[d] + g["extent"][d] for d in range(3)]
+        home = [t for t in matrix if contains(gmsh.model.getBoundingBox(3, t), lo, hi)]
+        if not home:
+            raise MeshError(f"grain {g['id']} lies in no piece of the matrix")
+        holes[max(home, key=mass.get)].append(tag)
+        volumes[tag] = g
+    for t in matrix:
+        if not holes[t]:
+            continue
+        loops = [occ.addSurfaceLoop([s for _, s in gmsh.model.getBoundary([(3, v)],
+                                                                          oriented=False)])
+                 for v in [t] + holes[t]]
+        occ.remove([(3, t)])
+        new = occ.addVolume(loops)
+        del volumes[t]
+        volumes[new] = None
+    occ.synchronize()
     return volumes
 
 
@@ -258,6 +311,8 @@ def resolve_images(master, coords, origin, size):
     masters is followed to its end; the translation is checked to be whole periods."""
     images = {}
     for node in master:
+        if node not in coords:
+            continue  # on an entity no element uses
         image = node
         seen = 0
         while image in master:
@@ -598,7 +653,9 @@ def main():
     except MeshError as e:
         print(f"{e}", file=sys.stderr)
         return EXIT_MESH_FAILED
-    except Exception as e:  # gmsh's own errors
+    except Exception as e:  # gmsh's own errors are plain Exceptions
+        if type(e) is not Exception:
+            raise
         print(f"gmsh: {e}", file=sys.stderr)
         return EXIT_MESH_FAILED
     finally:

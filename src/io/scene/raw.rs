@@ -242,6 +242,9 @@ pub(crate) struct RawOutput {
     pub statistics_png: Opt<bool>,
     pub damask: Opt<bool>,
     pub abaqus: Opt<bool>,
+    pub mesh: Opt<bool>,
+    pub mesh_size: Opt<f64>,
+    pub mesh_order: Opt<i64>,
 }
 
 /// `output.rve_fill`.

@@ -19,7 +19,7 @@ use super::raw::{RawBoundary, RawBox, RawPacking, RawPhase, RawScene};
 use crate::laws::Distribution;
 use crate::scene::{
     mean_grain_volume, Boundary, Domain, GrainCount, Orientation, PackingParams, Phase,
-    PhaseTexture, Rotation, Scene, Unjam, MAX_GRAINS, MAX_TARGET_FRACTION,
+    PhaseTexture, Rotation, RveFill, Scene, Unjam, MAX_GRAINS, MAX_TARGET_FRACTION,
 };
 use grain::{distribution, orientation};
 use serde::Deserialize;
@@ -78,7 +78,11 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
     let matrix = solver::matrix(&src, &raw, &output)?;
     if output.abaqus {
         let fill = output.rve.map(|r| r.fill);
-        solver::solids(&src, &raw, &phases, &matrix, fill)?;
+        solver::solids(&src, &raw, &phases, &matrix, fill, "abaqus")?;
+    }
+    if output.mesh.is_some() {
+        // The mesh always has a matrix: the film the gap leaves between the grains.
+        solver::solids(&src, &raw, &phases, &matrix, Some(RveFill::Matrix), "mesh")?;
     }
 
     let scene = Scene {
@@ -94,6 +98,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         warnings,
     };
     gap::fits(&src, raw.packing.as_ref(), &scene)?;
+    gap::meshable(&src, &raw, &scene)?;
     Ok(scene)
 }
 
