@@ -300,11 +300,13 @@ def generate(gmsh, job):
 
 
 def periodic_map(gmsh):
-    """Dependent node -> its master node, from every periodic entity of dims 0 to 2."""
+    """Dependent node -> its master node, from every periodic entity of dims 0 to 2:
+    the elements' vertices only (gmsh 4.15's high-order node pairs came out of order:
+    nodes 0.025 L apart paired; the edges' middle nodes are paired by mid_images)."""
     master = {}
     for dim in (0, 1, 2):
         for _, tag in gmsh.model.getEntities(dim):
-            tm, nodes, masters, _ = gmsh.model.mesh.getPeriodicNodes(dim, tag, True)
+            tm, nodes, masters, _ = gmsh.model.mesh.getPeriodicNodes(dim, tag, False)
             if tm == tag:
                 continue
             for n, m in zip(nodes, masters):
@@ -340,6 +342,46 @@ def resolve_images(master, coords, origin, size):
             raise MeshError(f"node {node} is its own periodic image")
         images[node] = (image, far)
     return images
+
+
+# Edges of a tetrahedron in Abaqus' (and VTK's) order of the middle nodes 4 to 9.
+TET10_EDGES = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+
+
+def mid_images(elements, coords, images, origin, size):
+    """Images of the middle nodes of quadratic elements on the far faces, after the
+    vertices were snapped: the middle node of edge (a, b) far along the axes F (those
+    both ends are far along) has as image the middle node of the edge joining the
+    images of a and b across F; found by the vertices' exact snapped coordinates."""
+    length = max(size)
+    at = {coords[n]: n for n in coords}
+    middle = {}
+    for conn in elements:
+        for k, (i, j) in enumerate(TET10_EDGES):
+            middle[frozenset((conn[i], conn[j]))] = conn[4 + k]
+
+    def far_axes(n):
+        return {d for d in range(3) if on_plane(coords[n][d], origin[d] + size[d], length)}
+
+    def across(n, axes):
+        if n not in images:
+            return n
+        image, far = images[n]
+        key = tuple(coords[image][d] + (size[d] if d in far and d not in axes else 0.0)
+                    for d in range(3))
+        return at[key]
+
+    out = {}
+    for edge, mid in middle.items():
+        a, b = tuple(edge)
+        axes = far_axes(a) & far_axes(b) & far_axes(mid)
+        if not axes or mid in out:
+            continue
+        partner = middle.get(frozenset((across(a, axes), across(b, axes))))
+        if partner is None:
+            raise MeshError(f"the middle node {mid} of a far-face edge has no periodic image")
+        out[mid] = (partner, sorted(axes))
+    return out
 
 
 def on_plane(x, plane, length):
@@ -404,6 +446,21 @@ def write_list(f, header, ids):
         f.write(", ".join(str(n) for n in ids[i:i + 16]) + "\n")
 
 
+# CalculiX reads at most 20 characters per number of a data line.
+CCX_FIELD = 20
+
+
+def num(x):
+    """x in at most CCX_FIELD characters: repr when it fits (it reads back exactly),
+    else fewer significant digits (a tiny coordinate such as -1.907386087041541e-05)."""
+    text = repr(float(x))
+    digits = 16
+    while len(text) > CCX_FIELD:
+        text = "%.*g" % (digits, x)
+        digits -= 1
+    return text
+
+
 def write_inp(path, job, coords, elements, images, origin):
     """mesh.inp: the layout of rve.inp (src/io/decks/abaqus.rs) on the tetrahedra."""
     size = job["box"]
@@ -423,11 +480,11 @@ def write_inp(path, job, coords, elements, images, origin):
                 "(grains.csv's id), one per phase and the matrix\n*Node\n")
         for n in range(1, n_nodes + 1):
             x, y, z = coords[n]
-            f.write(f"{n}, {x!r}, {y!r}, {z!r}\n")
+            f.write(f"{n}, {num(x)}, {num(y)}, {num(z)}\n")
         for d in range(3):
             at = list(origin)
             at[d] += size[d]
-            f.write(f"{rp[d]}, {at[0]!r}, {at[1]!r}, {at[2]!r}\n")
+            f.write(f"{rp[d]}, {num(at[0])}, {num(at[1])}, {num(at[2])}\n")
         f.write(f"*Element, type=C3D{4 if order == 1 else 10}\n")
         for e, (_, conn, _, _) in enumerate(elements):
             f.write(f"{e + 1}, " + ", ".join(str(n) for n in conn) + "\n")
@@ -555,6 +612,9 @@ def mesh(gmsh, job):
     gmsh.option.setNumber("Mesh.Algorithm3D", 10)
     gmsh.option.setNumber("Mesh.ElementOrder", job["order"])
     gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+    # Middle nodes moved onto the curved surfaces invert some thin elements (3 of 12k
+    # seen): gmsh's elastic-and-optimisation pass untangles them.
+    gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
     gmsh.logger.start()
     retried = generate(gmsh, job)
     pieces = extract(gmsh, volumes, job["order"])
@@ -572,6 +632,18 @@ def mesh(gmsh, job):
             worst = max(worst, max(abs(target[i] - coords[node][i]) for i in range(3)))
             coords[node] = tuple(target)
             gmsh.model.mesh.setNode(node, target, [])
+        if job["order"] == 2:
+            conns = [[new[n] for n in e] for _, _, conn in pieces for e in conn]
+            conns = [[e[i] for i in TET10_ORDER] for e in conns]
+            middles = mid_images(conns, coords, images, origin, size)
+            for node, (image, far) in middles.items():
+                target = list(coords[image])
+                for d in far:
+                    target[d] += size[d]
+                worst = max(worst, max(abs(target[i] - coords[node][i]) for i in range(3)))
+                coords[node] = tuple(target)
+                gmsh.model.mesh.setNode(node, target, [])
+            images.update(middles)
         check_faces(coords, images, origin, size)
     else:
         worst = 0.0
