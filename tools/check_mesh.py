@@ -18,7 +18,8 @@ Two scenes are packed and meshed, then checked by programs other than gmsh:
   x, y and z (tools/ccx_solve.py's step): a homogeneous RVE (grains and matrix of one
   material) gives back E and nu to HOMOGENEOUS_TOL, and a composite (stiff ellipsoids
   in a soft matrix) gives moduli inside the Hashin-Shtrikman bounds of the mesh's own
-  volume fraction.
+  volume fraction; and a homogeneous box with walls (no periodic equations) run as
+  written (`ccx -i mesh`) carries E * strain * area.
 
 Exit code 0 when every check passes, 1 otherwise.
 """
@@ -36,7 +37,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ccx_solve import HOMOGENEOUS_TOL, hashin_shtrikman, kg, solve  # noqa: E402
+from ccx_solve import HOMOGENEOUS_TOL, STRAIN, hashin_shtrikman, kg, solve  # noqa: E402
 
 # Opposite nodes must match to this fraction of the box length (issue 29): gmsh's
 # copies sit up to 1e-8 L off, which pack snaps onto master + L exactly.
@@ -52,6 +53,7 @@ seed = {seed}
 target_fraction = {fraction}
 [box]
 size = [10.0, 10.0, 10.0]
+boundary = "{boundary}"
 [packing]
 gap = 0.05
 [[phase]]
@@ -76,9 +78,12 @@ mesh_size = 0.3
 # a corner of the box (10 and 20 grains; the check fails if none does).
 SCENES = {
     "homogeneous": dict(seed=1, fraction=0.2, dmin=2.5, dmax=4.0, e_grain=210.0,
-                        e_matrix=210.0, nu_matrix=0.3),
+                        e_matrix=210.0, nu_matrix=0.3, boundary="periodic"),
     "composite": dict(seed=12, fraction=0.3, dmin=2.5, dmax=4.0, e_grain=100.0,
-                      e_matrix=10.0, nu_matrix=0.35),
+                      e_matrix=10.0, nu_matrix=0.35, boundary="periodic"),
+    # Walls: no periodic equations; the deck is run as written (`ccx -i mesh`).
+    "walled": dict(seed=2, fraction=0.25, dmin=2.5, dmax=3.5, e_grain=210.0,
+                   e_matrix=210.0, nu_matrix=0.3, boundary="reflecting"),
 }
 
 
@@ -153,6 +158,24 @@ def check_cells(out, summary, failures):
     return vol[grain >= 0].sum() / box
 
 
+def check_walled(out, summary, failures):
+    """The deck as written, run by ccx: its template stretches the box by STRAIN along
+    x on rollers, so a homogeneous box carries E * STRAIN * Ly * Lz."""
+    run = subprocess.run(["ccx", "-i", "mesh"], cwd=out, capture_output=True, text=True)
+    if run.returncode != 0 or "ERROR" in run.stdout:
+        failures.append(f"{out}: ccx -i mesh failed:\n{run.stdout[-1500:]}")
+        return
+    with open(os.path.join(out, "mesh.dat")) as f:
+        lines = [line.split() for line in f if line.strip()]
+    i = next(i for i, w in enumerate(lines) if w[:2] == ["total", "force"])
+    force = float(lines[i + 1][0])
+    size = summary["box"]
+    want = 210.0 * STRAIN * size[1] * size[2]
+    print(f"{out}: ccx -i mesh as written: force {force!r} on X1 ({want!r})")
+    if abs(force / want - 1.0) > HOMOGENEOUS_TOL:
+        failures.append(f"{out}: force {force} on X1, not {want}")
+
+
 def moduli(out, work, summary):
     deck = os.path.join(out, "mesh.inp")
     size = summary["box"]
@@ -185,8 +208,11 @@ def main():
         m = summary["mesh"]
         print(f"{name}: {m['elements']} elements, min SICN {m['min_sicn']:.3f}, 1st "
               f"percentile {m['p1_sicn']:.3f}, packed and meshed in {time.time() - started:.1f} s")
-        check_periodic(out, summary, failures)
         check_conforming(out, summary, failures)
+        if name == "walled":
+            check_walled(out, summary, failures)
+            continue
+        check_periodic(out, summary, failures)
         phi = check_cells(out, summary, failures)
         started = time.time()
         results = moduli(out, work, summary)

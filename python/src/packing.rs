@@ -2,10 +2,10 @@
 //! the CLI's outputs on request.
 
 use crate::errors::chain;
+use grainpack::io::mesh::{gmsh_version, write_mesh};
 use grainpack::io::report::{
     crystal_orientations, texture_summaries, write_grains_csv, write_outputs, Summary,
 };
-use grainpack::io::mesh::{gmsh_version, write_mesh};
 use grainpack::io::texture::measure_textures;
 use grainpack::io::voxel::voxelise;
 use grainpack::run::RunResult;
