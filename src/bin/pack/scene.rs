@@ -82,6 +82,12 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
             return Err(run_failure(error, &name));
         }
     };
+    if scene.output.mesh.is_some() && !options.quiet {
+        eprintln!(
+            "pack: meshing {} grains with gmsh (minutes for hundreds of grains)",
+            result.packing.grains.len()
+        );
+    }
     let written = write_outputs(&scene, &result).map_err(anyhow::Error::from)?;
     let wrote = describe(&written.files);
     let (packing, statistics) = (&result.packing, &result.statistics);
