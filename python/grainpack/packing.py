@@ -116,8 +116,9 @@ class Packing:
         return [os.fspath(p) for p in self._native._write(os.fspath(dir))]
 
     def mesh(self, dir: str | os.PathLike[str], size: float = 0.3, order: int = 1) -> dict[str, Any]:
-        """Meshes the packing with gmsh as ``[output] mesh = true`` does (needs gmsh:
-        ``pip install gmsh==4.15.2``, and a packing with ``packing.gap`` >= 0.02).
+        """Meshes the packing with gmsh as ``[output] mesh = true`` does (needs gmsh in
+        this interpreter: ``pip install gmsh==4.15.2``, and a packing with
+        ``packing.gap`` >= 0.02).
 
         Writes ``mesh.msh``, ``mesh.inp`` and ``mesh.vtu`` into ``dir`` (created if
         missing), all or none. ``size`` is the largest element edge over the smallest
@@ -128,7 +129,8 @@ class Packing:
         without the gap, ``RuntimeError`` with gmsh's message if it cannot mesh."""
         if isinstance(order, bool) or not isinstance(order, int):
             raise ValueError(f"order = {order!r}: must be 1 or 2")
-        files, stats = self._native._mesh(os.fspath(dir), float(size), order)
+        # gmsh runs in this interpreter (the one the caller installed gmsh into).
+        files, stats = self._native._mesh(os.fspath(dir), float(size), order, sys.executable)
         files = [os.fspath(p) for p in files]
         try:
             import pyvista

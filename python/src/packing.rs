@@ -141,13 +141,15 @@ impl PyPacking {
 
     /// Writes the conforming mesh (`mesh.msh`, `mesh.inp`, `mesh.vtu`) into `dir`, as
     /// `[output] mesh = true` with `mesh_size = size`, `mesh_order = order`; returns the
-    /// paths and the summary's `mesh` entry as JSON.
+    /// paths and the summary's `mesh` entry as JSON. gmsh runs in the Python `python`
+    /// (the caller's own interpreter).
     fn _mesh(
         &self,
         py: Python<'_>,
         dir: PathBuf,
         size: f64,
         order: u8,
+        python: String,
     ) -> PyResult<(Vec<PathBuf>, String)> {
         let (lo, hi) = MESH_SIZE_RANGE;
         if !(lo..=hi).contains(&size) {
@@ -167,7 +169,7 @@ impl PyPacking {
                  {MIN_MESH_GAP}: pack the scene with a gap"
             )));
         }
-        gmsh_version().map_err(|e| PyRuntimeError::new_err(chain(&e)))?;
+        gmsh_version(&python).map_err(|e| PyRuntimeError::new_err(chain(&e)))?;
         let mut scene = self.scene.clone();
         scene.output.mesh = Some(MeshSpec { size, order });
         let (grains, threads) = (&self.result.packing.grains, self.result.threads);
@@ -175,7 +177,7 @@ impl PyPacking {
             .detach(|| {
                 std::fs::create_dir_all(&dir)
                     .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-                write_mesh(&scene, grains, &dir, threads).map_err(|e| chain(&e))
+                write_mesh(&scene, grains, &dir, threads, &python).map_err(|e| chain(&e))
             })
             .map_err(PyRuntimeError::new_err)?;
         let files = ["mesh.msh", "mesh.inp", "mesh.vtu"].map(|n| dir.join(n));

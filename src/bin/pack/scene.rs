@@ -3,7 +3,7 @@
 use crate::cli::SceneArgs;
 use crate::exit::{Exit, Failure};
 use anyhow::{anyhow, Context};
-use grainpack::io::mesh::gmsh_version;
+use grainpack::io::mesh::{gmsh_version, python};
 use grainpack::io::report::{create_dir, write_outputs};
 use grainpack::packing::{Progress, StopReason};
 use grainpack::run::{Drawn, RunError, RunOptions};
@@ -39,7 +39,7 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     }
     // The mesher's gmsh is looked for before packing, not after a long run.
     if scene.output.mesh.is_some() {
-        gmsh_version().map_err(|e| Failure::bad_input(anyhow!(e)))?;
+        gmsh_version(&python()).map_err(|e| Failure::bad_input(anyhow!(e)))?;
     }
     // Made before packing, so that a directory that cannot be made fails at once
     // rather than after a long run; removed again if nothing is written to it.

@@ -2,8 +2,9 @@
 //! between them as body-fitted tetrahedra, periodic in a periodic box, made by gmsh.
 //!
 //! grainpack drives gmsh through its Python API: `gmsh_mesh.py`, embedded in this
-//! library, runs in the `python3` on `PATH` (or `$GRAINPACK_PYTHON`) with the `gmsh`
-//! package (`pip install gmsh==4.15.2`). Why this and not the C API or a `.geo`
+//! library, runs in a Python with the `gmsh` package (`pip install gmsh==4.15.2`):
+//! for `pack` the `python3` on `PATH` or `$GRAINPACK_PYTHON` ([`python`]), for the
+//! Python module's `Packing.mesh` its own interpreter. Why this and not the C API or a `.geo`
 //! script: docs/architecture.md ("The conforming mesh"). The script receives a job
 //! (`job.rs`: the box, the grains, the options, the materials) and writes
 //! [`MESH_MSH`], [`MESH_INP`] and [`MESH_VTU`] to temporary names that are renamed
@@ -139,15 +140,14 @@ pub fn python() -> String {
     std::env::var("GRAINPACK_PYTHON").unwrap_or_else(|_| "python3".to_owned())
 }
 
-/// gmsh's version in [`python`], or why it cannot be used. Called before packing, so
-/// that a missing gmsh fails at once.
-pub fn gmsh_version() -> Result<String, MeshError> {
-    let python = python();
+/// gmsh's version in the Python `python` (as [`python`] gives it), or why it cannot be
+/// used. Called before packing, so that a missing gmsh fails at once.
+pub fn gmsh_version(python: &str) -> Result<String, MeshError> {
     let missing = |detail: String| MeshError::GmshMissing {
-        python: python.clone(),
+        python: python.to_owned(),
         detail,
     };
-    let out = Command::new(&python)
+    let out = Command::new(python)
         .args(["-c", "import gmsh; print(gmsh.__version__)"])
         .output()
         .map_err(|e| missing(e.to_string()))?;
@@ -160,13 +160,14 @@ pub fn gmsh_version() -> Result<String, MeshError> {
     Ok(String::from_utf8_lossy(&out.stdout).trim().to_owned())
 }
 
-/// Meshes `grains` (packed in `scene`) into `dir`: [`MESH_MSH`], [`MESH_INP`],
-/// [`MESH_VTU`], all or none.
+/// Meshes `grains` (packed in `scene`) into `dir` with gmsh in the Python `python`:
+/// [`MESH_MSH`], [`MESH_INP`], [`MESH_VTU`], all or none.
 pub fn write_mesh(
     scene: &Scene,
     grains: &[PackedGrain],
     dir: &Path,
     threads: usize,
+    python: &str,
 ) -> Result<MeshStats, MeshError> {
     let io = |source| MeshError::Io {
         dir: dir.to_path_buf(),
@@ -186,13 +187,13 @@ pub fn write_mesh(
     let result = (|| {
         let text = serde_json::to_vec(&job).map_err(|e| io(std::io::Error::other(e)))?;
         fs::write(&job_path, text).map_err(io)?;
-        let out = Command::new(python())
+        let out = Command::new(python)
             .arg("-c")
             .arg(SCRIPT)
             .arg(&job_path)
             .output()
             .map_err(|e| MeshError::GmshMissing {
-                python: python(),
+                python: python.to_owned(),
                 detail: e.to_string(),
             })?;
         if !out.status.success() {

@@ -37,7 +37,7 @@ use crate::io::decks::{
     write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
     MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
 };
-use crate::io::mesh::{write_mesh, MeshError, MeshStats, MESH_INP, MESH_MSH, MESH_VTU};
+use crate::io::mesh::{python, write_mesh, MeshError, MeshStats, MESH_INP, MESH_MSH, MESH_VTU};
 use crate::io::plots::render_pole_figures_png;
 use crate::io::texture::measure_textures;
 use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
@@ -217,7 +217,7 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     })?;
     let mesh = match output.mesh {
         Some(_) => {
-            let stats = write_mesh(scene, grains, &output.dir, result.threads)?;
+            let stats = write_mesh(scene, grains, &output.dir, result.threads, &python())?;
             for name in [MESH_MSH, MESH_INP, MESH_VTU] {
                 files.written.push(output.dir.join(name));
             }
