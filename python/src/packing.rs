@@ -3,15 +3,18 @@
 
 use crate::errors::chain;
 use grainpack::contact::Dimension;
+use grainpack::io::mesh::{gmsh_version, write_mesh};
 use grainpack::io::report::{
     crystal_orientations, texture_summaries, write_grains_csv, write_outputs, Summary,
 };
 use grainpack::io::texture::measure_textures;
 use grainpack::io::voxel::voxelise;
 use grainpack::run::RunResult;
-use grainpack::scene::{rve_cells, RveFill, Scene};
+use grainpack::scene::{
+    proportional_cells, rve_cells, MeshSpec, RveFill, Scene, MESH_SIZE_RANGE, MIN_MESH_GAP,
+};
 use numpy::{IntoPyArray, PyArray1};
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -128,17 +131,64 @@ impl PyPacking {
             .detach(|| write_outputs(&scene, result))
             .map_err(|e| PyOSError::new_err(chain(&e)))?;
         if scene.output.summary_json {
-            let summary = Summary::new(
+            let mut summary = Summary::new(
                 &scene,
                 result,
                 written.rve.as_ref(),
                 written.textures.clone(),
                 written.seconds,
             );
+            summary.mesh = written.mesh.as_ref();
             let json = serde_json::to_string(&summary).expect("a summary serializes");
             *self.written_summary.lock().expect("never poisoned") = Some(json);
         }
         Ok(written.files)
+    }
+
+    /// Writes the conforming mesh (`mesh.msh`, `mesh.inp`, `mesh.vtu`) into `dir`, as
+    /// `[output] mesh = true` with `mesh_size = size`, `mesh_order = order`; returns the
+    /// paths and the summary's `mesh` entry as JSON. gmsh runs in the Python `python`
+    /// (the caller's own interpreter).
+    fn _mesh(
+        &self,
+        py: Python<'_>,
+        dir: PathBuf,
+        size: f64,
+        order: u8,
+        python: String,
+    ) -> PyResult<(Vec<PathBuf>, String)> {
+        let (lo, hi) = MESH_SIZE_RANGE;
+        if !(lo..=hi).contains(&size) {
+            return Err(PyValueError::new_err(format!(
+                "size = {size}: must lie in [{lo}, {hi}] (as output.mesh_size)"
+            )));
+        }
+        if !(1..=2).contains(&order) {
+            return Err(PyValueError::new_err(format!(
+                "order = {order}: must be 1 (C3D4) or 2 (C3D10)"
+            )));
+        }
+        let gap = self.scene.packing.gap;
+        if gap < MIN_MESH_GAP {
+            return Err(PyValueError::new_err(format!(
+                "packing.gap = {gap}: a mesh needs a gap between the grains, at least \
+                 {MIN_MESH_GAP}: pack the scene with a gap"
+            )));
+        }
+        gmsh_version(&python).map_err(|e| PyRuntimeError::new_err(chain(&e)))?;
+        let mut scene = self.scene.clone();
+        scene.output.mesh = Some(MeshSpec { size, order });
+        let (grains, threads) = (&self.result.packing.grains, self.result.threads);
+        let stats = py
+            .detach(|| {
+                std::fs::create_dir_all(&dir)
+                    .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+                write_mesh(&scene, grains, &dir, threads, &python).map_err(|e| chain(&e))
+            })
+            .map_err(PyRuntimeError::new_err)?;
+        let files = ["mesh.msh", "mesh.inp", "mesh.vtu"].map(|n| dir.join(n));
+        let json = serde_json::to_string(&stats).expect("mesh stats serialize");
+        Ok((files.to_vec(), json))
     }
 
     /// The voxel grid: `(material, phase, cells)`, both flat in x-fastest order.

@@ -3,6 +3,7 @@
 pub mod atomic;
 pub mod cases;
 pub mod decks;
+pub mod mesh;
 pub mod plots;
 pub mod report;
 pub mod scene;

@@ -48,9 +48,9 @@ pub use grain::{aspect_ratio, GrainSpec, SampleError, CRYSTAL_STREAM};
 pub use measured::{Measured, MeasuredGrain, MeasuredMode};
 pub use orientation::{tilt_angle, tilt_angle_of, Axis, Orientation};
 pub use output::{
-    proportional_cells, rve_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS,
-    DEFAULT_VTK_RESOLUTION, MAX_RVE_CELLS, MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION,
-    MIN_VTK_RESOLUTION,
+    proportional_cells, rve_cells, MeshSpec, OutputSpec, RveFill, RveSpec, VtkSpec,
+    DEFAULT_MESH_SIZE, DEFAULT_RVE_CELLS, DEFAULT_VTK_RESOLUTION, MAX_RVE_CELLS,
+    MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION, MESH_SIZE_RANGE, MIN_MESH_GAP, MIN_VTK_RESOLUTION,
 };
 pub use params::{PackingParams, Rotation, Unjam};
 pub use shape::{triaxial_semi_axes, ThirdRatio, Triaxial};

@@ -3,6 +3,7 @@
 use crate::cli::SceneArgs;
 use crate::exit::{Exit, Failure};
 use anyhow::{anyhow, Context};
+use grainpack::io::mesh::{gmsh_version, python};
 use grainpack::io::report::{create_dir, write_outputs};
 use grainpack::packing::{Progress, StopReason};
 use grainpack::run::{Drawn, RunError, RunOptions};
@@ -35,6 +36,10 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     }
     if let Some(dir) = &options.out {
         scene.output.dir.clone_from(dir);
+    }
+    // The mesher's gmsh is looked for before packing, not after a long run.
+    if scene.output.mesh.is_some() {
+        gmsh_version(&python()).map_err(|e| Failure::bad_input(anyhow!(e)))?;
     }
     // Made before packing, so that a directory that cannot be made fails at once
     // rather than after a long run; removed again if nothing is written to it.
@@ -77,6 +82,12 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
             return Err(run_failure(error, &name));
         }
     };
+    if scene.output.mesh.is_some() && !options.quiet {
+        eprintln!(
+            "pack: meshing {} grains with gmsh (minutes for hundreds of grains)",
+            result.packing.grains.len()
+        );
+    }
     let written = write_outputs(&scene, &result).map_err(anyhow::Error::from)?;
     let wrote = describe(&written.files);
     let (packing, statistics) = (&result.packing, &result.statistics);

@@ -38,6 +38,7 @@ use crate::io::decks::{
     write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
     MATERIAL_YAML, RVE_INP, RVE_UMAT_INP,
 };
+use crate::io::mesh::{python, write_mesh, MeshError, MeshStats, MESH_INP, MESH_MSH, MESH_VTU};
 use crate::io::plots::{render_packing_png, render_pole_figures_png};
 use crate::io::texture::measure_textures;
 use crate::io::vtk::{write_centers_vtp, write_grains_vtu, CENTERS_VTP, GRAINS_VTU};
@@ -163,6 +164,9 @@ pub enum ReportError {
         #[source]
         source: io::Error,
     },
+    /// The conforming mesh could not be made (no mesh file was left).
+    #[error("cannot write the conforming mesh")]
+    Mesh(#[from] MeshError),
 }
 
 /// Writes the summary as pretty-printed JSON, ending with a newline.
@@ -178,6 +182,8 @@ pub struct Written {
     pub files: Vec<PathBuf>,
     /// How well the voxel RVE renders the grains, when one was written.
     pub rve: Option<RveSummary>,
+    /// What the conforming mesh measured, when one was written.
+    pub mesh: Option<MeshStats>,
     /// Each phase's crystal orientations against its texture (as in the summary).
     pub textures: Vec<TextureSummary>,
     /// Seconds spent writing everything before `summary.json`.
@@ -257,15 +263,27 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         }
         Ok(())
     })?;
+    let mesh = match output.mesh {
+        Some(_) => {
+            let stats = write_mesh(scene, grains, &output.dir, result.threads, &python())?;
+            for name in [MESH_MSH, MESH_INP, MESH_VTU] {
+                files.written.push(output.dir.join(name));
+            }
+            Some(stats)
+        }
+        None => None,
+    };
     let seconds = started.elapsed().as_secs_f64();
     let textures = texture_summaries(scene, &measures);
     if output.summary_json {
-        let summary = Summary::new(scene, result, rve.as_ref(), textures.clone(), seconds);
+        let mut summary = Summary::new(scene, result, rve.as_ref(), textures.clone(), seconds);
+        summary.mesh = mesh.as_ref();
         files.write(SUMMARY_JSON, |w| write_summary_json(w, &summary))?;
     }
     Ok(Written {
         files: files.into_written(),
         rve,
+        mesh,
         textures,
         seconds,
     })

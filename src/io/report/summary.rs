@@ -4,6 +4,7 @@
 
 use super::texture::TextureSummary;
 use super::RveSummary;
+use crate::io::mesh::MeshStats;
 use crate::run::{PhaseStatistics, PlaneStatistics, RunResult, TurnStatistics};
 use crate::scene::{Boundary, Scene};
 use serde::Serialize;
@@ -76,6 +77,9 @@ pub struct Summary<'a> {
     /// The voxel RVE, when one was written.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rve: Option<&'a RveSummary>,
+    /// The conforming mesh, when one was written (`output.mesh`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<&'a MeshStats>,
     /// Each phase's crystal orientations against its texture.
     pub textures: Vec<TextureSummary>,
     /// The scene's warnings ([`Scene::warnings`]): values its units make implausible.
@@ -185,6 +189,7 @@ impl<'a> Summary<'a> {
             phases: &statistics.phases,
             plane: statistics.plane.as_ref(),
             rve,
+            mesh: None,
             textures,
             warnings: &scene.warnings,
         }

@@ -248,6 +248,9 @@ pub(crate) struct RawOutput {
     pub packing_png: Opt<bool>,
     pub damask: Opt<bool>,
     pub abaqus: Opt<bool>,
+    pub mesh: Opt<bool>,
+    pub mesh_size: Opt<f64>,
+    pub mesh_order: Opt<i64>,
 }
 
 /// `output.rve_fill`.

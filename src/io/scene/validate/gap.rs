@@ -3,7 +3,7 @@
 use super::super::error::{SceneError, Source};
 use super::super::raw::RawPacking;
 use super::plane::densest;
-use crate::scene::{Phase, Scene};
+use crate::scene::{Phase, Scene, MIN_MESH_GAP};
 use toml::Spanned;
 
 /// The gap as written: a finite number, at least 0.
@@ -65,4 +65,32 @@ pub(super) fn fits(
         ));
     }
     Ok(())
+}
+
+/// A conforming mesh (`output.mesh = true`) needs a film of matrix between any two
+/// grains that its elements can fill: `packing.gap` at least [`MIN_MESH_GAP`].
+pub(super) fn meshable(
+    src: &Source,
+    raw: &super::super::raw::RawScene,
+    scene: &Scene,
+) -> Result<(), SceneError> {
+    if scene.output.mesh.is_none() || scene.packing.gap >= MIN_MESH_GAP {
+        return Ok(());
+    }
+    let why = format!(
+        "output.mesh = true needs a gap between the grains for the matrix elements: set \
+         packing.gap to at least {MIN_MESH_GAP} (grains that touch, or nearly, leave slivers \
+         or no mesh at all)"
+    );
+    match raw.packing.as_ref().and_then(|p| p.get_ref().gap.as_ref()) {
+        Some(at) => Err(src.invalid_at("packing.gap", at, why)),
+        None => {
+            let at = raw
+                .output
+                .as_ref()
+                .and_then(|o| o.get_ref().mesh.as_ref())
+                .map_or(0..0, Spanned::span);
+            Err(src.missing("packing.gap", at, why))
+        }
+    }
 }

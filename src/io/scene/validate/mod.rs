@@ -22,7 +22,7 @@ use super::raw::{RawPacking, RawPhase, RawScene};
 use crate::contact::Dimension;
 use crate::laws::Distribution;
 use crate::scene::{
-    Domain, Orientation, PackingParams, Phase, PhaseTexture, Rotation, Scene, Unjam,
+    Domain, Orientation, PackingParams, Phase, PhaseTexture, Rotation, RveFill, Scene, Unjam,
 };
 use grain::{distribution, orientation};
 use plane::not_in_2d;
@@ -82,7 +82,11 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
     let matrix = solver::matrix(&src, &raw, &output)?;
     if output.abaqus {
         let fill = output.rve.map(|r| r.fill);
-        solver::solids(&src, &raw, &phases, &matrix, fill)?;
+        solver::solids(&src, &raw, &phases, &matrix, fill, "abaqus")?;
+    }
+    if output.mesh.is_some() {
+        // The mesh always has a matrix: the film the gap leaves between the grains.
+        solver::solids(&src, &raw, &phases, &matrix, Some(RveFill::Matrix), "mesh")?;
     }
 
     let scene = Scene {
@@ -98,6 +102,7 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         warnings,
     };
     gap::fits(&src, raw.packing.as_ref(), &scene)?;
+    gap::meshable(&src, &raw, &scene)?;
     Ok(scene)
 }
 

@@ -6,8 +6,8 @@ use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawFill, RawOutput};
 use crate::scene::{
-    rve_cells, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
-    MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION, MIN_VTK_RESOLUTION,
+    rve_cells, MeshSpec, OutputSpec, RveFill, RveSpec, VtkSpec, DEFAULT_RVE_CELLS, MAX_RVE_CELLS,
+    MAX_RVE_CELLS_PER_EDGE, MAX_VTK_RESOLUTION, MESH_SIZE_RANGE, MIN_VTK_RESOLUTION,
 };
 use crate::scene::{Boundary, Domain};
 use std::path::PathBuf;
@@ -51,7 +51,61 @@ pub(super) fn output(
     spec.abaqus = flag(&raw.abaqus, false);
     spec.vtk = vtk(src, raw, domain)?;
     spec.rve = rve(src, raw, domain)?;
+    spec.mesh = mesh(src, raw, plane)?;
     Ok(spec)
+}
+
+/// `mesh`, `mesh_size`, `mesh_order`. The gap the mesh needs is checked with
+/// `[packing]` (`validate::gap::meshable`).
+fn mesh(src: &Source, raw: &RawOutput, plane: bool) -> Result<Option<MeshSpec>, SceneError> {
+    let on = raw.mesh.as_ref().is_some_and(|v| *v.get_ref());
+    if let Some(v) = raw.mesh.as_ref().filter(|_| on && plane) {
+        return Err(src.invalid_at(
+            "output.mesh",
+            v,
+            "the conforming mesh is 3D only for now; a 2D scene's plane-strain deck is the \
+             pixel one (rve = true, abaqus = true)",
+        ));
+    }
+    if !on {
+        if let Some(v) = &raw.mesh_size {
+            return Err(src.invalid_at("output.mesh_size", v, "applies only with mesh = true"));
+        }
+        if let Some(v) = &raw.mesh_order {
+            return Err(src.invalid_at("output.mesh_order", v, "applies only with mesh = true"));
+        }
+        return Ok(None);
+    }
+    let mut spec = MeshSpec::default();
+    if let Some(v) = &raw.mesh_size {
+        let (lo, hi) = MESH_SIZE_RANGE;
+        let h = *v.get_ref();
+        if !(lo..=hi).contains(&h) {
+            return Err(src.invalid_at(
+                "output.mesh_size",
+                v,
+                format!(
+                    "must lie in [{lo}, {hi}] (the largest element edge over the smallest \
+                     grain's equivalent diameter)"
+                ),
+            ));
+        }
+        spec.size = h;
+    }
+    if let Some(v) = &raw.mesh_order {
+        spec.order = match *v.get_ref() {
+            1 => 1,
+            2 => 2,
+            _ => {
+                return Err(src.invalid_at(
+                    "output.mesh_order",
+                    v,
+                    "must be 1 (linear tetrahedra, C3D4) or 2 (quadratic, C3D10)",
+                ))
+            }
+        };
+    }
+    Ok(Some(spec))
 }
 
 /// `vtk`, `vtk_resolution`, `periodic_images`.

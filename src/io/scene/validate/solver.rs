@@ -52,7 +52,8 @@ pub(super) fn homogenization(
     Ok(Some(Homogenization { name, entry }))
 }
 
-/// `[matrix]`: only with `rve_fill = "matrix"`, where there is a matrix.
+/// `[matrix]`: only with `rve_fill = "matrix"` or `mesh = true`, where there is a
+/// matrix.
 pub(super) fn matrix(
     src: &Source,
     raw: &RawScene,
@@ -61,11 +62,12 @@ pub(super) fn matrix(
     let Some(m) = &raw.matrix else {
         return Ok(Matrix::default());
     };
-    if output.rve.map(|r| r.fill) != Some(RveFill::Matrix) {
+    if output.rve.map(|r| r.fill) != Some(RveFill::Matrix) && output.mesh.is_none() {
         return Err(src.invalid_at(
             "matrix",
             m,
-            "applies only with a voxel RVE whose gaps are a matrix (output.rve_fill = \"matrix\")",
+            "applies only with a voxel RVE whose gaps are a matrix (output.rve_fill = \
+             \"matrix\") or a conforming mesh (output.mesh = true)",
         ));
     }
     let m = m.get_ref();
@@ -78,36 +80,50 @@ pub(super) fn matrix(
     })
 }
 
-/// `abaqus = true` writes a `*Material` per phase (and the matrix): each needs its
-/// elastic constants.
+/// `abaqus = true` and `mesh = true` write a `*Material` per phase (and the matrix):
+/// each needs its elastic constants. `switch` is the output key that asks for them.
 pub(super) fn solids(
     src: &Source,
     raw: &RawScene,
     phases: &[Phase],
     matrix: &Matrix,
     fill: Option<RveFill>,
+    switch: &str,
 ) -> Result<(), SceneError> {
-    let at = raw
-        .output
-        .as_ref()
-        .and_then(|o| o.get_ref().abaqus.as_ref())
-        .map_or(0..0, Spanned::span);
+    let flag = raw.output.as_ref().and_then(|o| {
+        let o = o.get_ref();
+        if switch == "mesh" {
+            o.mesh.as_ref()
+        } else {
+            o.abaqus.as_ref()
+        }
+    });
+    let at = flag.map_or(0..0, Spanned::span);
     for (i, p) in phases.iter().enumerate() {
         if p.elastic.is_none() {
             return Err(src.missing(
                 format!("phase[{i}].elastic"),
                 at,
-                "output.abaqus = true writes a *Material per phase: give [phase.elastic] \
-                 with E and nu",
+                format!(
+                    "output.{switch} = true writes a *Material per phase: give \
+                     [phase.elastic] with E and nu"
+                ),
             ));
         }
     }
     if fill == Some(RveFill::Matrix) && matrix.elastic.is_none() {
+        let which = if switch == "mesh" {
+            "output.mesh = true (the matrix fills the gaps between the grains)"
+        } else {
+            "output.abaqus = true with rve_fill = \"matrix\""
+        };
         return Err(src.missing(
             "matrix.elastic",
             at,
-            "output.abaqus = true with rve_fill = \"matrix\" writes a *Material for the \
-             matrix: give [matrix.elastic] with E and nu",
+            format!(
+                "{which} writes a *Material for the matrix: give [matrix.elastic] with E \
+                 and nu"
+            ),
         ));
     }
     Ok(())

@@ -1,0 +1,56 @@
+"""Packing.mesh: the conforming mesh through gmsh (skipped without gmsh), the same
+files as `pack` with `[output] mesh = true`, and its refusals."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+
+import grainpack as gp
+
+SCENE = """
+seed = 1
+target_fraction = 0.2
+[box]
+size = [10.0, 10.0, 10.0]
+[packing]
+gap = {gap}
+[[phase]]
+size = {{ distribution = "uniform", min = 2.5, max = 4.0 }}
+aspect_ratio = {{ distribution = "uniform", min = 1.2, max = 2.0 }}
+elastic = {{ E = 210.0, nu = 0.3 }}
+"""
+
+
+def test_a_packing_without_the_gap_is_refused_naming_packing_gap():
+    p = gp.pack(gp.Scene.from_toml(SCENE.format(gap=0.0)), progress=False)
+    with pytest.raises(ValueError, match="packing.gap = 0: a mesh needs a gap"):
+        p.mesh("unused")
+
+
+def test_bad_sizes_and_orders_are_refused():
+    p = gp.pack(gp.Scene.from_toml(SCENE.format(gap=0.05)), progress=False)
+    with pytest.raises(ValueError, match="size = 5"):
+        p.mesh("unused", size=5.0)
+    with pytest.raises(ValueError, match="order = 3"):
+        p.mesh("unused", order=3)
+
+
+def test_the_mesh_holds_every_grain_and_fills_the_box(tmp_path):
+    pytest.importorskip("gmsh")
+    p = gp.pack(gp.Scene.from_toml(SCENE.format(gap=0.05)), progress=False)
+    out = p.mesh(tmp_path / "m", size=0.3)
+    assert [os.path.basename(f) for f in out["files"]] == ["mesh.msh", "mesh.inp", "mesh.vtu"]
+    assert all(os.path.getsize(f) > 0 for f in out["files"])
+    summary = out["summary"]
+    assert summary["elements"] > 0 and summary["min_sicn"] > 0
+    grid = out["grid"]
+    if grid is None:
+        return
+    assert grid.n_cells == summary["elements"]
+    # Every grain has elements; the cells' volumes fill the box (periodic, no gaps).
+    assert set(np.unique(grid.cell_data["grain"])) == set(p.ids.tolist()) | {-1}
+    volume = grid.compute_cell_sizes(length=False, area=False)["Volume"].sum()
+    assert abs(volume / 1000.0 - 1.0) < 1e-9

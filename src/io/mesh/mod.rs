@@ -1,0 +1,217 @@
+//! The conforming mesh (`[output] mesh = true`): the packed grains and the matrix
+//! between them as body-fitted tetrahedra, periodic in a periodic box, made by gmsh.
+//!
+//! grainpack drives gmsh through its Python API: `gmsh_mesh.py`, embedded in this
+//! library, runs in a Python with the `gmsh` package (`pip install gmsh==4.15.2`):
+//! for `pack` the `python3` on `PATH` or `$GRAINPACK_PYTHON` ([`python`]), for the
+//! Python module's `Packing.mesh` its own interpreter. Why this and not the C API or a `.geo`
+//! script: docs/architecture.md ("The conforming mesh"). The script receives a job
+//! (`job.rs`: the box, the grains, the options, the materials) and writes
+//! [`MESH_MSH`], [`MESH_INP`] and [`MESH_VTU`] to temporary names that are renamed
+//! here only when all three are complete; on failure nothing is left.
+//!
+//! Numbering and sets of `mesh.inp` follow `rve.inp` (`crate::io::decks`): element
+//! sets `GRAIN_<id>`, `PHASE<i>_<NAME>` and the matrix, node sets of the faces, edges
+//! and corners, reference nodes `RPX`, `RPY`, `RPZ` after the mesh's nodes, periodic
+//! `*Equation`s `u(node) − u(image) − Σ u(RP_d) = 0`, the same step template. Node 1
+//! is the corner at the mesh's origin, which the template fixes.
+//!
+//! In a periodic box the meshed window is the box shifted (`MeshStats::origin`) so
+//! that every grain's tangent planes clear the faces by the largest margin found: a
+//! grain that barely crosses a face leaves a cap too thin to mesh (issue 29).
+
+mod job;
+
+pub use job::mesh_job;
+
+use crate::packing::PackedGrain;
+use crate::scene::Scene;
+use serde::{Deserialize, Serialize};
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// File name of the gmsh mesh (format 4.1).
+pub const MESH_MSH: &str = "mesh.msh";
+/// File name of the Abaqus/CalculiX deck on the conforming mesh.
+pub const MESH_INP: &str = "mesh.inp";
+/// File name of the mesh for ParaView/PyVista (cell data `grain`, `phase`, `sicn`).
+pub const MESH_VTU: &str = "mesh.vtu";
+
+/// The gmsh release the script is written and tested against (`.ci/run` installs it).
+pub const GMSH_VERSION: &str = "4.15.2";
+
+/// How to get gmsh, printed when it is missing.
+pub const GMSH_INSTALL_HINT: &str = "install gmsh's Python package into the python3 on \
+     PATH (`python3 -m pip install gmsh==4.15.2`), or point $GRAINPACK_PYTHON at a Python \
+     that has it";
+
+/// Exit code of the script when gmsh could not mesh the packing (its message on
+/// stderr); `EXIT_MESH_FAILED` in `gmsh_mesh.py`.
+const SCRIPT_MESH_FAILED: i32 = 3;
+
+/// The mesher, embedded so that `pack` needs no file beside it.
+const SCRIPT: &str = include_str!("gmsh_mesh.py");
+
+/// Why the mesh could not be made.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// No Python, or no gmsh in it.
+    #[error("output.mesh = true needs gmsh, which {python} cannot import ({detail}): {GMSH_INSTALL_HINT}")]
+    GmshMissing {
+        /// The Python tried.
+        python: String,
+        /// What it said.
+        detail: String,
+    },
+    /// gmsh could not mesh the packing (nothing written).
+    #[error("gmsh could not mesh the packing (no mesh file written): {message}")]
+    Failed {
+        /// gmsh's message, or the pipeline's.
+        message: String,
+    },
+    /// The job or a result could not be written or read.
+    #[error("mesh files in {}", dir.display())]
+    Io {
+        /// The output directory.
+        dir: PathBuf,
+        /// What went wrong.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// What the mesher measured, as `summary.json` reports it (`mesh`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshStats {
+    /// Tetrahedra.
+    pub elements: usize,
+    /// Nodes (the reference nodes not counted).
+    pub nodes: usize,
+    /// Element order (1: C3D4, 2: C3D10).
+    pub order: u8,
+    /// Largest element edge asked of gmsh, in the scene's length unit.
+    pub element_size: f64,
+    /// Smallest signed inverse condition number over the elements (gmsh's `minSICN`;
+    /// 1 for a regular tetrahedron, ≤ 0 inverted, which is refused).
+    pub min_sicn: f64,
+    /// Its first percentile.
+    pub p1_sicn: f64,
+    /// Seconds to build the geometry (OCC fragments, periodic pairing).
+    pub geometry_seconds: f64,
+    /// Seconds to mesh it (surfaces, volumes, periodic snapping).
+    pub mesh_seconds: f64,
+    /// Whether the first attempt failed on a periodic curve and the retry with sizes
+    /// from curvature was needed.
+    pub retried_with_curvature: bool,
+    /// Lower corner of the meshed window of the periodic packing.
+    pub origin: [f64; 3],
+    /// Per axis, the least distance from a box face to a grain's tangent plane
+    /// (periodic box only).
+    pub face_margin: Option<[f64; 3]>,
+    /// Pairs of opposite face pieces made periodic.
+    pub periodic_face_pairs: usize,
+    /// Nodes tied to an image by periodic equations.
+    pub periodic_nodes: usize,
+    /// Largest distance a periodic node moved when snapped onto its master plus the
+    /// box length.
+    pub largest_snap: f64,
+    /// Per phase (the matrix last), the volume fraction of the mesh's elements against
+    /// the packing's exact one: they differ by the chordal error of the elements.
+    pub phase_volume_fractions: Vec<PhaseVolume>,
+    /// gmsh's version.
+    pub gmsh: String,
+}
+
+/// One phase's volume fraction in the mesh and in the packing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PhaseVolume {
+    /// Phase index (the number of phases for the matrix).
+    pub phase: usize,
+    /// Σ element volumes / box volume (straight-sided elements).
+    pub mesh: f64,
+    /// Σ (4π/3) a1 a2 a3 / box volume (the matrix: the rest).
+    pub exact: f64,
+}
+
+/// The Python that runs the mesher: `$GRAINPACK_PYTHON`, else `python3`.
+pub fn python() -> String {
+    std::env::var("GRAINPACK_PYTHON").unwrap_or_else(|_| "python3".to_owned())
+}
+
+/// gmsh's version in the Python `python` (as [`python`] gives it), or why it cannot be
+/// used. Called before packing, so that a missing gmsh fails at once.
+pub fn gmsh_version(python: &str) -> Result<String, MeshError> {
+    let missing = |detail: String| MeshError::GmshMissing {
+        python: python.to_owned(),
+        detail,
+    };
+    let out = Command::new(python)
+        .args(["-c", "import gmsh; print(gmsh.__version__)"])
+        .output()
+        .map_err(|e| missing(e.to_string()))?;
+    if !out.status.success() {
+        let err = String::from_utf8_lossy(&out.stderr);
+        return Err(missing(
+            err.lines().last().unwrap_or("no message").to_owned(),
+        ));
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).trim().to_owned())
+}
+
+/// Meshes `grains` (packed in `scene`) into `dir` with gmsh in the Python `python`:
+/// [`MESH_MSH`], [`MESH_INP`], [`MESH_VTU`], all or none.
+pub fn write_mesh(
+    scene: &Scene,
+    grains: &[PackedGrain],
+    dir: &Path,
+    threads: usize,
+    python: &str,
+) -> Result<MeshStats, MeshError> {
+    let io = |source| MeshError::Io {
+        dir: dir.to_path_buf(),
+        source,
+    };
+    let pid = std::process::id();
+    // The extension last: gmsh picks the format by it.
+    let tmp = |name: &str| dir.join(format!(".tmp-{pid}-{name}"));
+    let names = [MESH_MSH, MESH_INP, MESH_VTU];
+    let (job_path, stats_path) = (tmp("mesh_job.json"), tmp("mesh_stats.json"));
+    let job = mesh_job(scene, grains, threads, names.map(tmp), &stats_path);
+    let cleanup = || {
+        for p in names.map(tmp).iter().chain([&job_path, &stats_path]) {
+            let _ = fs::remove_file(p);
+        }
+    };
+    let result = (|| {
+        let text = serde_json::to_vec(&job).map_err(|e| io(std::io::Error::other(e)))?;
+        fs::write(&job_path, text).map_err(io)?;
+        let out = Command::new(python)
+            .arg("-c")
+            .arg(SCRIPT)
+            .arg(&job_path)
+            .output()
+            .map_err(|e| MeshError::GmshMissing {
+                python: python.to_owned(),
+                detail: e.to_string(),
+            })?;
+        if !out.status.success() {
+            let err = String::from_utf8_lossy(&out.stderr).trim().to_owned();
+            return Err(match out.status.code() {
+                Some(SCRIPT_MESH_FAILED) => MeshError::Failed { message: err },
+                _ => MeshError::Failed {
+                    message: format!("the mesher stopped ({}): {err}", out.status),
+                },
+            });
+        }
+        let stats: MeshStats = serde_json::from_slice(&fs::read(&stats_path).map_err(io)?)
+            .map_err(|e| io(std::io::Error::other(e)))?;
+        for name in names {
+            fs::rename(tmp(name), dir.join(name)).map_err(io)?;
+        }
+        Ok(stats)
+    })();
+    cleanup();
+    result
+}
