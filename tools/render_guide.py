@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Renders the user guide's pictures (docs/img/) from the actual output of `pack`.
 
-    python tools/render_guide.py [--pack target/release/pack] [--work DIR]
+    python tools/render_guide.py [--pack target/release/pack] [--work DIR] [--only SCENE ...]
 
 Packs every scene of `configs/` as the tutorials and the gallery do (same seed, same
 options), draws each packing's grains in 3D with PyVista off-screen (`grains.vtu`,
-coloured by phase, the box outlined), and copies the figures `pack` itself draws
+coloured by phase, the box outlined; a 2D scene's own `packing.png` instead), and copies the figures `pack` itself draws
 (`sections.png`, `statistics.png`, `pole_figures.png`) that the pages show, each
 scaled down and reduced to a palette so that all of docs/img stays a few hundred kB,
 and the README's picture (the example's grains beside its RVE's mid-sections).
@@ -42,7 +42,12 @@ SCENES = {
     "kanapy_elongated": ("kanapy", []),
     "density_spheres": ("spheres", []),
     "density_spheroids": ("spheroids", []),
+    # 2D scenes: pack's own picture of the packing stands for the 3D render.
+    "fibres_2d": ("fibres", ["packing"]),
+    "ellipses_2d": ("ellipses", ["packing"]),
 }
+# Scenes whose grains are drawn by pack itself (packing.png): no PyVista render.
+PLANE = {"fibres_2d", "ellipses_2d"}
 # Width in pixels of the 3D renders, and the widest a copied figure may be.
 RENDER_PX = 400
 FIGURE_MAX_PX = 900
@@ -86,6 +91,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--pack", default=str(ROOT / "target" / "release" / "pack"))
     parser.add_argument("--work", type=Path, help="pack into DIR/<scene> and keep it")
+    parser.add_argument("--only", nargs="+", metavar="SCENE", help="render only these scenes (stems)")
     args = parser.parse_args()
     pack = str(Path(args.pack).resolve())
     work = (args.work or Path(tempfile.mkdtemp(prefix="render_guide_"))).resolve()
@@ -93,18 +99,24 @@ def main() -> int:
     IMG.mkdir(parents=True, exist_ok=True)
     rows = []
     for stem, (name, figures) in SCENES.items():
+        if args.only and stem not in args.only:
+            continue
         out = work / stem
         status = subprocess.run([pack, str(ROOT / "configs" / f"{stem}.toml"), "--out", str(out), "--quiet"],
                                 cwd=work).returncode
         if status not in (0, 3):  # 3: the target not reached, the densest packing written
             print(f"pack failed on {stem} with exit code {status}")
             return 1
-        render(out, IMG / f"{name}-grains.png", VIEW.get(stem))
+        if stem not in PLANE:
+            render(out, IMG / f"{name}-grains.png", VIEW.get(stem))
         for figure in figures:
             save_small(Image.open(out / f"{figure}.png"), IMG / f"{name}-{figure.replace('_', '-')}.png", FIGURE_MAX_PX)
         s = json.loads((out / "summary.json").read_text())
         rows.append(f"| [`{stem}.toml`](../configs/{stem}.toml) | {s['grains']} | {s['packing_fraction']:.4f} "
                     f"({s['target_fraction']:.4f}) | {s['stop_reason'].replace('_', ' ')} |")
+    if args.only and "grains" not in args.only:
+        print("\n".join(rows))
+        return 0
     # The README's picture: the example's grains beside the mid-sections of its RVE.
     left, right = Image.open(IMG / "first-grains.png"), Image.open(work / "grains" / "sections.png")
     right = right.resize((round(right.width * left.height / right.height), left.height), Image.LANCZOS)

@@ -83,8 +83,9 @@ pub fn random_close_packing_discs(diameters: &[f64]) -> Option<f64> {
     disc_packing(diameters, RODS)
 }
 
-/// The random close packing of discs with these diameters, with `rods` rods.
-fn disc_packing(diameters: &[f64], rods: usize) -> Option<f64> {
+/// The finite positive diameters in ascending order; `None` if there are none or no
+/// rods to draw.
+fn usable_diameters(diameters: &[f64], rods: usize) -> Option<Vec<f64>> {
     let mut d: Vec<f64> = (diameters.iter())
         .copied()
         .filter(|x| x.is_finite() && *x > 0.0)
@@ -93,6 +94,12 @@ fn disc_packing(diameters: &[f64], rods: usize) -> Option<f64> {
         return None;
     }
     d.sort_by(f64::total_cmp);
+    Some(d)
+}
+
+/// The random close packing of discs with these diameters, with `rods` rods.
+fn disc_packing(diameters: &[f64], rods: usize) -> Option<f64> {
+    let d = usable_diameters(diameters, rods)?;
     // Diameter classes with their share of the crossings, ∝ D per disc.
     let mut classes: Vec<(f64, f64)> = Vec::new();
     for &x in &d {
@@ -121,14 +128,7 @@ fn disc_packing(diameters: &[f64], rods: usize) -> Option<f64> {
 
 /// [`random_close_packing`] with `rods` rods.
 pub fn random_close_packing_with(diameters: &[f64], rods: usize) -> Option<f64> {
-    let mut d: Vec<f64> = (diameters.iter())
-        .copied()
-        .filter(|x| x.is_finite() && *x > 0.0)
-        .collect();
-    if d.is_empty() || rods == 0 {
-        return None;
-    }
-    d.sort_by(f64::total_cmp);
+    let d = usable_diameters(diameters, rods)?;
     let chords = Chords::new(&d);
     // Rod i sits at tail probability (i + ½)/rods: the longest first.
     let longest = d[d.len() - 1];

@@ -1,7 +1,7 @@
 //! `grains.vtu` of a 2D scene: every ellipse as one polygon in the plane z = 0, with
 //! its figures as cell data.
 
-use super::surfaces::{f64s, periodic_shifts};
+use super::surfaces::{f64s, placements, Placed};
 use super::xml::{write_piece, Array, Piece, Scalar, Section};
 use super::{grain_id, phase_index, rotation};
 use crate::contact::{ellipse_angle, Dimension};
@@ -12,14 +12,6 @@ use std::io::{self, Write};
 
 /// VTK's cell type of a polygon (`VTK_POLYGON`).
 const POLYGON: u8 = 7;
-
-/// One polygon of the file: a grain (its index) or a periodic copy of it, shifted.
-#[derive(Clone, Copy)]
-struct Outline {
-    grain: usize,
-    shift: [f64; 3],
-    copy: bool,
-}
 
 /// Appends the `n` vertices of `grain`'s outline shifted by `shift`, counter-clockwise
 /// (the polygon's normal is +z): vertex `k` is `c + R diag(a1, a2) (cos t, sin t)`,
@@ -39,11 +31,11 @@ fn push_vertices(n: usize, grain: &PackedGrain, shift: [f64; 3], bytes: &mut Vec
 
 /// A cell array of one value per polygon: `value(outline)`'s little-endian bytes.
 fn cell<'a>(
-    outlines: &'a [Outline],
+    outlines: &'a [Placed],
     name: &'static str,
     scalar: Scalar,
     components: usize,
-    value: impl Fn(&Outline) -> Vec<u8> + 'a,
+    value: impl Fn(&Placed) -> Vec<u8> + 'a,
 ) -> Array<'a> {
     Array::new(Section::CellData, name, scalar, components, move |k, b| {
         b.extend(value(&outlines[k]))
@@ -59,27 +51,11 @@ pub(super) fn write_ellipses_vtu(
     crystals: Option<&[[f64; 4]]>,
 ) -> io::Result<()> {
     let vertices = spec.polygon_vertices();
-    let mut outlines = Vec::with_capacity(grains.len());
-    for (i, g) in grains.iter().enumerate() {
-        grain_id(g)?;
-        phase_index(g)?;
-        outlines.push(Outline {
-            grain: i,
-            shift: [0.0; 3],
-            copy: false,
-        });
-        if spec.periodic_images {
-            outlines.extend(periodic_shifts(g, domain).into_iter().map(|shift| Outline {
-                grain: i,
-                shift,
-                copy: true,
-            }));
-        }
-    }
+    let outlines = placements(grains, domain, spec.periodic_images)?;
     let cells = outlines.len();
     let index = Scalar::index(cells * vertices);
     let o = &outlines;
-    let grain = move |s: &Outline| &grains[s.grain];
+    let grain = move |s: &Placed| &grains[s.grain];
     let float = |name, value: fn(&PackedGrain) -> f64| {
         cell(o, name, Scalar::Float64, 1, move |s| {
             value(grain(s)).to_le_bytes().to_vec()
@@ -109,7 +85,7 @@ pub(super) fn write_ellipses_vtu(
         }),
     ];
     if let Some(c) = crystals {
-        let q = move |s: &Outline| c.get(s.grain).copied().unwrap_or([1.0, 0.0, 0.0, 0.0]);
+        let q = move |s: &Placed| c.get(s.grain).copied().unwrap_or([1.0, 0.0, 0.0, 0.0]);
         arrays.push(cell(
             o,
             "crystal_quaternion",

@@ -52,12 +52,40 @@ pub fn periodic_shifts(grain: &PackedGrain, domain: &Domain) -> Vec<[f64; 3]> {
     out
 }
 
-/// One surface of `grains.vtu`: a grain (its index) or a periodic copy of it, shifted.
+/// One shape of `grains.vtu` (a surface in 3D, an outline in 2D): a grain (its index)
+/// or a periodic copy of it, shifted.
 #[derive(Clone, Copy)]
-struct Surface {
-    grain: usize,
-    shift: [f64; 3],
-    copy: bool,
+pub(super) struct Placed {
+    pub grain: usize,
+    pub shift: [f64; 3],
+    pub copy: bool,
+}
+
+/// Each grain, followed by its periodic copies when `images` asks for them; an error
+/// for a grain whose id or phase VTK cannot hold.
+pub(super) fn placements(
+    grains: &[PackedGrain],
+    domain: &Domain,
+    images: bool,
+) -> io::Result<Vec<Placed>> {
+    let mut placed = Vec::with_capacity(grains.len());
+    for (i, g) in grains.iter().enumerate() {
+        grain_id(g)?;
+        phase_index(g)?;
+        placed.push(Placed {
+            grain: i,
+            shift: [0.0; 3],
+            copy: false,
+        });
+        if images {
+            placed.extend(periodic_shifts(g, domain).into_iter().map(|shift| Placed {
+                grain: i,
+                shift,
+                copy: true,
+            }));
+        }
+    }
+    Ok(placed)
 }
 
 /// Appends the points of `grain`'s surface shifted by `shift`: point `p` of the unit
@@ -90,10 +118,10 @@ fn per_surface<'a, const N: usize>(
     name: &'static str,
     scalar: Scalar,
     components: usize,
-    surfaces: &'a [Surface],
+    surfaces: &'a [Placed],
     grains: &'a [PackedGrain],
     triangles: usize,
-    value: impl Fn(usize, &PackedGrain, &Surface) -> [u8; N] + 'a,
+    value: impl Fn(usize, &PackedGrain, &Placed) -> [u8; N] + 'a,
 ) -> Array<'a> {
     Array::new(
         Section::CellData,
@@ -129,23 +157,7 @@ pub(super) fn write_surfaces_vtu(
 ) -> io::Result<()> {
     let sphere = Icosphere::new(spec.resolution);
     let (per_grain, points) = (sphere.triangles.len(), sphere.points.len());
-    let mut surfaces = Vec::with_capacity(grains.len());
-    for (i, g) in grains.iter().enumerate() {
-        grain_id(g)?;
-        phase_index(g)?;
-        surfaces.push(Surface {
-            grain: i,
-            shift: [0.0; 3],
-            copy: false,
-        });
-        if spec.periodic_images {
-            surfaces.extend(periodic_shifts(g, domain).into_iter().map(|shift| Surface {
-                grain: i,
-                shift,
-                copy: true,
-            }));
-        }
-    }
+    let surfaces = placements(grains, domain, spec.periodic_images)?;
     let cells = surfaces.len() * per_grain;
     let index = Scalar::index((surfaces.len() * points).max(3 * cells));
     let id = |g: &PackedGrain| grain_id(g).unwrap_or_default().to_le_bytes();

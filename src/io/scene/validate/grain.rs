@@ -104,21 +104,7 @@ pub(super) fn orientation(
             "applies only in a 2D scene (box.size = [Lx, Ly]); in 3D give axis",
         ));
     }
-    let given: [(&str, Option<Range<usize>>); 10] = [
-        ("quaternion", o.quaternion.as_ref().map(Spanned::span)),
-        ("axis", o.axis.as_ref().map(Spanned::span)),
-        ("mean", o.mean.as_ref().map(Spanned::span)),
-        ("kappa", o.kappa.as_ref().map(Spanned::span)),
-        ("min", o.min.as_ref().map(Spanned::span)),
-        ("max", o.max.as_ref().map(Spanned::span)),
-        ("direction", o.direction.as_ref().map(Spanned::span)),
-        (
-            "spin_reference",
-            o.spin_reference.as_ref().map(Spanned::span),
-        ),
-        ("spin_kappa", o.spin_kappa.as_ref().map(Spanned::span)),
-        ("spin_mean", o.spin_mean.as_ref().map(Spanned::span)),
-    ];
+    let given = given_keys(o);
     let (name, takes): (_, &[&str]) = match kind {
         RawKind::Random => ("random", &[]),
         RawKind::Fixed => ("fixed", &["quaternion"]),
@@ -234,6 +220,26 @@ pub(super) fn tilt(
 
 /// The first of the `given` keys (name, where it stands) that kind `name` does not take
 /// (`takes`), as an error naming it and what the kind takes (`nothing` if none).
+/// The keys an orientation table may hold, each with where it was given.
+pub(super) fn given_keys(o: &RawOrientation) -> [(&'static str, Option<Range<usize>>); 11] {
+    [
+        ("quaternion", o.quaternion.as_ref().map(Spanned::span)),
+        ("axis", o.axis.as_ref().map(Spanned::span)),
+        ("mean", o.mean.as_ref().map(Spanned::span)),
+        ("kappa", o.kappa.as_ref().map(Spanned::span)),
+        ("min", o.min.as_ref().map(Spanned::span)),
+        ("max", o.max.as_ref().map(Spanned::span)),
+        ("direction", o.direction.as_ref().map(Spanned::span)),
+        (
+            "spin_reference",
+            o.spin_reference.as_ref().map(Spanned::span),
+        ),
+        ("spin_kappa", o.spin_kappa.as_ref().map(Spanned::span)),
+        ("spin_mean", o.spin_mean.as_ref().map(Spanned::span)),
+        ("angle", o.angle.as_ref().map(Spanned::span)),
+    ]
+}
+
 pub(super) fn foreign_keys(
     src: &Source,
     key: &str,

@@ -8,7 +8,7 @@
 //! the scene 2D or 3D, the densest fraction of its grains, the refusal of triaxial laws
 //! and the message every 2D refusal shares.
 
-use super::grain::{foreign_keys, tilt};
+use super::grain::{foreign_keys, given_keys, tilt};
 use crate::contact::Dimension;
 use crate::io::scene::error::{SceneError, Source};
 use crate::io::scene::raw::{RawBoundary, RawBox, RawKind, RawOrientation, RawPhase};
@@ -56,22 +56,7 @@ pub(super) fn orientation(
             "an ellipse's direction is its angle; give angle (degrees from x)",
         ));
     }
-    let given: [(&str, Option<Range<usize>>); 11] = [
-        ("quaternion", o.quaternion.as_ref().map(Spanned::span)),
-        ("axis", o.axis.as_ref().map(Spanned::span)),
-        ("mean", o.mean.as_ref().map(Spanned::span)),
-        ("kappa", o.kappa.as_ref().map(Spanned::span)),
-        ("min", o.min.as_ref().map(Spanned::span)),
-        ("max", o.max.as_ref().map(Spanned::span)),
-        ("direction", o.direction.as_ref().map(Spanned::span)),
-        (
-            "spin_reference",
-            o.spin_reference.as_ref().map(Spanned::span),
-        ),
-        ("spin_kappa", o.spin_kappa.as_ref().map(Spanned::span)),
-        ("spin_mean", o.spin_mean.as_ref().map(Spanned::span)),
-        ("angle", o.angle.as_ref().map(Spanned::span)),
-    ];
+    let given = given_keys(o);
     foreign_keys(src, key, name, &given, takes, "no other key")?;
     match name {
         "random" => Ok(Orientation::Random),
