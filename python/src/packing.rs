@@ -10,9 +10,7 @@ use grainpack::io::report::{
 use grainpack::io::texture::measure_textures;
 use grainpack::io::voxel::voxelise;
 use grainpack::run::RunResult;
-use grainpack::scene::{
-    proportional_cells, rve_cells, MeshSpec, RveFill, Scene, MESH_SIZE_RANGE, MIN_MESH_GAP,
-};
+use grainpack::scene::{rve_cells, MeshSpec, RveFill, Scene, MESH_SIZE_RANGE, MIN_MESH_GAP};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
