@@ -63,6 +63,9 @@ class _Packing:
     def _voxelise(
         self, cells: list[int], fill: str
     ) -> tuple[npt.NDArray[np.uint32], npt.NDArray[np.uint32], tuple[int, int, int]]: ...
+    def _mesh(
+        self, dir: str | os.PathLike[str], size: float, order: int, python: str
+    ) -> tuple[list[str], str]: ...
     @property
     def box_size(self) -> tuple[float, float, float]: ...
     @property
