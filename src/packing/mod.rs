@@ -59,6 +59,7 @@ mod grains;
 mod jamming;
 mod job;
 mod neighbours;
+mod start;
 mod state;
 mod tuning;
 mod unjam;
@@ -70,7 +71,6 @@ pub use job::{Counters, Job, PackError, Packing, Progress, Verification};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
 pub use verify::{verify, MIN_GAP_REACH};
 
-use crate::contact::Dimension;
 use crate::scene::{Boundary, Rotation};
 use effort::{
     recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW, QUENCH_LIMIT,
@@ -79,12 +79,7 @@ use effort::{
 use fire::{Context, Fire, Outcome};
 use jamming::Patience;
 use neighbours::Neighbours;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use state::State;
-
-/// The random stream used for initial positions (the scene's sampling uses stream 0).
-const POSITION_STREAM: u64 = 1;
 
 use crate::scene::GrainSpec;
 use std::sync::atomic::AtomicBool;
@@ -110,26 +105,10 @@ pub fn pack(
     } = *job;
     tuning.check()?;
     let protocol = tuning.protocol;
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    rng.set_stream(POSITION_STREAM);
-    let centres: Vec<[f64; 3]> = match domain.dimension {
-        Dimension::Three => specs
-            .iter()
-            .map(|_| [0, 1, 2].map(|k| rng.random::<f64>() * domain.size[k]))
-            .collect(),
-        // Ellipses lie in the slab's mid-plane, which no force leaves (module
-        // `contact::Dimension`: every normal and torque of two of them is in-plane).
-        Dimension::Two => specs
-            .iter()
-            .map(|_| {
-                let [x, y] = [0, 1].map(|k| rng.random::<f64>() * domain.size[k]);
-                [x, y, domain.plane_z()]
-            })
-            .collect(),
-    };
+    let centres = start::random_centres(specs.len(), domain, seed);
     // The loop works on the grains in the order of their starting places along a
     // space-filling curve, so that neighbours sit close in memory.
-    let order = spatial_order(&centres, domain.size);
+    let order = start::spatial_order(&centres, domain.size);
     let sorted: Vec<GrainSpec> = order.iter().map(|&k| specs[k]).collect();
     let mut state = State::new(&sorted, domain, params.gap).map_err(|e| match e {
         PackError::Grain { id, source } => PackError::Grain {
@@ -257,27 +236,6 @@ pub fn pack(
         run.counters,
         params.gap,
     )
-}
-
-/// The grains' indices sorted by the Morton code of their centres (10 bits a
-/// coordinate), ties by index.
-fn spatial_order(centres: &[[f64; 3]], size: [f64; 3]) -> Vec<usize> {
-    const BITS: u32 = 10;
-    let cells = f64::from(1u32 << BITS);
-    let spread = |x: u64| {
-        // Bit b of x moves to bit 3b.
-        (0..BITS).fold(0u64, |acc, b| acc | ((x >> b) & 1) << (3 * b))
-    };
-    let mut keyed: Vec<(u64, usize)> = centres
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let q = [0, 1, 2].map(|k| ((c[k] / size[k] * cells) as u64).min((1 << BITS) - 1));
-            (spread(q[0]) | spread(q[1]) << 1 | spread(q[2]) << 2, i)
-        })
-        .collect();
-    keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
 }
 
 /// The largest scale up to `s` at which the current state is clean: every pair apart
