@@ -652,19 +652,29 @@ fn every_shipped_config_loads_and_samples() {
     assert!(seen >= 4, "only {seen} configs found");
 }
 
-/// `packing.unjam` takes "none" or "swap", and "swap" only with effort's
+/// `packing.unjam` takes "none", "swap" or "anneal", and the moves only with effort's
 /// recompression cycles (effort ≥ 1.5), which it acts between.
 #[test]
-fn unjam_takes_none_or_swap_and_needs_recompression_cycles() {
+fn unjam_takes_none_swap_or_anneal_and_needs_recompression_cycles() {
     let scene = Scene::from_str(
         &with_extra("[packing]\neffort = 1.5\nunjam = \"swap\""),
         "scene.toml",
     )
     .unwrap();
     assert_eq!(scene.packing.unjam, grainpack::scene::Unjam::Swap);
+    let scene = Scene::from_str(
+        &with_extra("[packing]\neffort = 2\nunjam = \"anneal\""),
+        "scene.toml",
+    )
+    .unwrap();
+    assert_eq!(scene.packing.unjam, grainpack::scene::Unjam::Anneal);
+    assert_starts(
+        &error(&with_extra("[packing]\nunjam = \"anneal\"")),
+        "scene.toml:20:9: packing.unjam = \"anneal\": acts between effort's recompression cycles: needs packing.effort ≥ 1.5 (it is 1)",
+    );
     assert_starts(
         &error(&with_extra("[packing]\nunjam = \"shake\"")),
-        "scene.toml:20:9: packing.unjam = \"shake\": must be \"none\" or \"swap\"",
+        "scene.toml:20:9: packing.unjam = \"shake\": must be \"none\", \"swap\" or \"anneal\"",
     );
     assert_starts(
         &error(&with_extra("[packing]\neffort = 1.4\nunjam = \"swap\"")),

@@ -33,7 +33,9 @@
 //!    `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed state is then
 //!    compressed again well past its jamming point and the search repeated,
 //!    `⌊2 (effort − 1)⌋` times (recompression cycles, see `start_cycle`), keeping
-//!    the densest clean state: more effort buys density for time;
+//!    the densest clean state: more effort buys density for time (with
+//!    `packing.unjam = "anneal"` a cycle is a slow compression with Monte Carlo moves
+//!    instead, module `unjam`);
 //! 5. grains that may turn and reached the target are turned back toward their drawn
 //!    orientations (`restore`, a scene parameter): [`restore_steps`](ProtocolParams::restore_steps)
 //!    steps with a pull of stiffness [`restore_stiffness`](ProtocolParams::restore_stiffness)
@@ -197,12 +199,36 @@ pub fn pack(
             }
             cycles_left -= 1;
             stuck = f64::INFINITY;
+            // The cycles' relaxations judge with the half window.
+            let half_window = (tuning.fire.window as f64 * CYCLE_WINDOW).round() as u64;
+            if unjammer.anneals() {
+                fire.set_window(half_window);
+                // The densest clean state is annealed from below its jamming point
+                // (module `unjam`), and the bisection goes on from the result.
+                let mut above = f64::INFINITY;
+                if let Some(b) = &best {
+                    restore(&mut state, b)?;
+                    let (clean, bound) =
+                        unjammer.anneal(&mut state, &mut fire, &mut run, &protocol, b.scale)?;
+                    above = bound;
+                    if b.scale < clean {
+                        best = Some(Snapshot::of(&state, clean.min(1.0)));
+                    }
+                }
+                let low = best.as_ref().map_or(0.0, |b| b.scale);
+                if low >= 1.0 {
+                    break StopReason::TargetReached;
+                }
+                // At least one trial above the densest state.
+                stuck = above.max(low * (1.0 + 2.0 * params.jam_resolution));
+                s = 0.5 * (low + stuck);
+                continue;
+            }
             s = start_cycle(low, depth);
             // Unjamming moves (`packing.unjam`, module `unjam`) at the recompressed
             // scale, before the cycle's first relaxation.
             unjammer.before_recompression(&mut state, &mut fire, &mut run, &protocol, s)?;
-            // The cycle's own relaxations judge with the half window.
-            fire.set_window((tuning.fire.window as f64 * CYCLE_WINDOW).round() as u64);
+            fire.set_window(half_window);
             continue;
         }
         s = 0.5 * (low + stuck);
@@ -241,7 +267,7 @@ pub fn pack(
 /// The largest scale up to `s` at which the current state is clean: every pair apart
 /// with the contact gap (scaling all grains by `t` divides every μ by `t`), every
 /// grain inside the walls.
-fn clean_scale(
+pub(crate) fn clean_scale(
     state: &mut State,
     run: &mut Context<'_>,
     protocol: &ProtocolParams,
@@ -289,12 +315,7 @@ fn turn_back(
     if budget <= steps {
         return Ok(None);
     }
-    state.centres.clone_from(&snapshot.centres);
-    let changed: Vec<(usize, [f64; 4])> = (snapshot.quaternions.iter().enumerate())
-        .filter(|&(i, q)| state.quaternions[i] != *q)
-        .map(|(i, q)| (i, *q))
-        .collect();
-    state.set_orientations(&changed)?;
+    restore(state, snapshot)?;
     let s = snapshot.scale;
     fire.restore = protocol.restore_stiffness;
     run.counters.steps += 1;
@@ -307,6 +328,16 @@ fn turn_back(
     let left = (budget - steps).min(protocol.stage_steps);
     let settled = fire.relax(state, run, s, big_s, left)?;
     Ok((settled == Outcome::Clean).then(|| Snapshot::of(state, s)))
+}
+
+/// Puts the state back to a snapshot's centres and orientations.
+fn restore(state: &mut State, snapshot: &Snapshot) -> Result<(), PackError> {
+    state.centres.clone_from(&snapshot.centres);
+    let changed: Vec<(usize, [f64; 4])> = (snapshot.quaternions.iter().enumerate())
+        .filter(|&(i, q)| state.quaternions[i] != *q)
+        .map(|(i, q)| (i, *q))
+        .collect();
+    state.set_orientations(&changed)
 }
 
 /// A clean state kept as the fallback result.

@@ -91,7 +91,11 @@ impl State {
     }
 
     /// The prepared shape and half-widths of grain `id` at orientation `q`.
-    fn shape_of(&self, id: usize, q: [f64; 4]) -> Result<(PreparedEllipsoid, [f64; 3]), PackError> {
+    pub fn shape_of(
+        &self,
+        id: usize,
+        q: [f64; 4],
+    ) -> Result<(PreparedEllipsoid, [f64; 3]), PackError> {
         let bad = |source| PackError::Grain { id, source };
         let e = Ellipsoid::new(self.axes[id], q).map_err(bad)?;
         let shape = PreparedEllipsoid::with_semi_axes(&e, self.axes[id]).map_err(bad)?;
@@ -112,6 +116,13 @@ impl State {
             self.half_widths[id] = widths;
         }
         Ok(())
+    }
+
+    /// Turns grain `id` to orientation `q`, its shape and half-widths at `q` given.
+    pub fn set_shape(&mut self, id: usize, q: [f64; 4], shape: (PreparedEllipsoid, [f64; 3])) {
+        self.quaternions[id] = q;
+        self.shapes[id] = shape.0;
+        self.half_widths[id] = shape.1;
     }
 
     /// The part of torque `t` grain `i` may follow under `mode`.

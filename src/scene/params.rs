@@ -92,17 +92,25 @@ pub enum Unjam {
     /// Grains of similar volume swap positions where that lowers the overlap energy of
     /// the recompressed packing, each keeping its orientation (`"swap"`).
     Swap,
+    /// The cycles anneal: hard-particle Monte Carlo (moves, turns, swaps) between
+    /// small compressions, from below the jamming point (`"anneal"`).
+    Anneal,
 }
 
 impl Unjam {
     /// Every value, as the scene file names it.
-    pub const NAMES: [(&'static str, Self); 2] = [("none", Self::None), ("swap", Self::Swap)];
+    pub const NAMES: [(&'static str, Self); 3] = [
+        ("none", Self::None),
+        ("swap", Self::Swap),
+        ("anneal", Self::Anneal),
+    ];
 
     /// The value as the scene file and `summary.json` name it.
     pub fn name(self) -> &'static str {
         match self {
             Self::None => "none",
             Self::Swap => "swap",
+            Self::Anneal => "anneal",
         }
     }
 }

@@ -53,7 +53,7 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
 
     let mut bar = Bar::new(options.quiet, scene.expected_count().round() as usize);
     let mut progress = |p: &Progress| bar.update(p);
-    let swaps = scene.packing.unjam == Unjam::Swap
+    let swaps = scene.packing.unjam != Unjam::None
         && scene.packing.effort >= grainpack::packing::MIN_CYCLE_EFFORT;
     let mut drawn = |d: &Drawn| {
         if d.above_reachable() {

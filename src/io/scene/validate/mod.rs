@@ -325,7 +325,13 @@ fn packing(
         params.unjam = (Unjam::NAMES.iter())
             .find(|(name, _)| name == v.get_ref())
             .map(|&(_, u)| u)
-            .ok_or_else(|| src.invalid_at("packing.unjam", v, "must be \"none\" or \"swap\""))?;
+            .ok_or_else(|| {
+                src.invalid_at(
+                    "packing.unjam",
+                    v,
+                    "must be \"none\", \"swap\" or \"anneal\"",
+                )
+            })?;
         if params.unjam != Unjam::None && params.effort < crate::packing::MIN_CYCLE_EFFORT {
             return Err(src.invalid_at(
                 "packing.unjam",
