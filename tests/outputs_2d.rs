@@ -15,7 +15,7 @@ use serde_json::Value;
 use std::f64::consts::PI;
 use std::path::Path;
 use std::time::Duration;
-use support::files::{files_in, scratch};
+use support::files::{files_in, pack_in, scratch};
 use support::vtk::read_vtk;
 
 /// Lattice spacing, and the cells along x and y.
@@ -321,4 +321,25 @@ fn check_picture(dir: &Path, scene: &Scene, grains: &[PackedGrain]) {
             assert_eq!(pixel(x, y), [255; 3], "({x}, {y})");
         }
     }
+}
+
+/// 60 ellipses asked past the reachable estimate of discs, with a gap: the warning
+/// before packing speaks of discs and areas, and of the gap's square.
+#[test]
+fn the_2d_warning_speaks_of_discs_and_the_gap_squared() {
+    let dir = scratch("plane", "warning");
+    let scene = "seed = 2\ngrains = 60\n[box]\nsize = [15.0, 15.0]\n[[phase]]\n\
+        size = { distribution = \"uniform\", min = 1.6, max = 2.2 }\n\
+        aspect_ratio = { distribution = \"constant\", value = 1.5 }\n\
+        [packing]\ngap = 0.05\n[output]\ndir = \"out\"\n";
+    std::fs::write(dir.join("scene.toml"), scene).unwrap();
+    let run = pack_in(&dir, &["--quiet", "scene.toml"]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        err.contains("random packings of discs of the same areas reach about")
+            && err.contains("ellipses free to turn pack denser")
+            && err.contains("divided by (1 + packing.gap)² = 1.1025"),
+        "{err}"
+    );
+    assert!(!err.contains("spheres") && !err.contains("³"), "{err}");
 }

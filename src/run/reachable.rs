@@ -38,6 +38,9 @@ pub struct Drawn {
     pub spheres: bool,
     /// The scene's `packing.gap`.
     pub gap: f64,
+    /// Spheres and volumes, or discs and areas.
+    #[serde(skip)]
+    pub dimension: Dimension,
 }
 
 impl Drawn {
@@ -63,6 +66,7 @@ impl Drawn {
                 / (1.0 + scene.packing.gap).powi(dimension.exponent()),
             spheres: (specs.iter()).all(|s| s.semi_axes.iter().all(|&a| a == s.semi_axes[0])),
             gap: scene.packing.gap,
+            dimension,
         }
     }
 

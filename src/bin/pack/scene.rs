@@ -3,6 +3,7 @@
 use crate::cli::SceneArgs;
 use crate::exit::{Exit, Failure};
 use anyhow::{anyhow, Context};
+use grainpack::contact::Dimension;
 use grainpack::io::mesh::{gmsh_version, python};
 use grainpack::io::report::{create_dir, write_outputs};
 use grainpack::packing::{Progress, StopReason};
@@ -144,29 +145,38 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
 
 /// Warns, before packing, that the drawn grains are denser than the reachable
 /// estimate; printed even with `--quiet`, as the message of a target not reached is.
-/// `swaps`: effort's cycles will swap grains, which packs spread sizes past the
-/// estimate (lognormal σ = 0.25: 0.683 against 0.664, BENCHMARKS.md "third round").
+/// `swaps`: effort's cycles will swap grains (`"swap"` or `"anneal"`), which packs
+/// spread sizes past the estimate (lognormal σ = 0.25: 0.683 against 0.664, BENCHMARKS.md "third round").
 fn warn_unreachable(d: &Drawn, swaps: bool) {
-    let (what, mut caveat) = if d.spheres {
-        ("these spheres", String::new())
-    } else {
-        (
+    let plane = d.dimension == Dimension::Two;
+    let (what, mut caveat) = match (d.spheres, plane) {
+        (true, false) => ("these spheres", String::new()),
+        (true, true) => ("these discs", String::new()),
+        (false, false) => (
             "spheres of the same volumes",
             "; ellipsoids free to turn can pack a few percent denser, frozen or slender \
              ones much less"
                 .to_string(),
-        )
+        ),
+        (false, true) => (
+            "discs of the same areas",
+            "; ellipses free to turn pack denser (aspect 1.3–1.4: about 0.89 quenched, \
+             0.897 annealed), frozen or slender ones less"
+                .to_string(),
+        ),
     };
     if swaps {
         caveat.push_str(
-            "; the swaps of packing.unjam can pass it by a few percent where sizes differ",
+            "; the moves of packing.unjam can pass it by a few percent where sizes differ",
         );
     }
     if d.gap > 0.0 {
+        let power = d.dimension.exponent();
         caveat.push_str(&format!(
-            ", divided by (1 + packing.gap)³ = {:.4}: the grains pack as if inflated by \
+            ", divided by (1 + packing.gap){} = {:.4}: the grains pack as if inflated by \
              1 + {}",
-            (1.0 + d.gap).powi(3),
+            if plane { "²" } else { "³" },
+            (1.0 + d.gap).powi(power),
             d.gap
         ));
     }
