@@ -303,6 +303,10 @@ fn keys_without_meaning_in_2d_are_refused() {
             format!("scene.toml:12:6: phase[0].size.by = \"volume\": {no_meaning}: its grains have areas; give by = \"area\""),
         ),
         (
+            format!("{BASE}[output]\nvtk = true\nvtk_resolution = 9"),
+            "scene.toml:21:18: output.vtk_resolution = 9: must lie in [1, 6] (a polygon of 8·2^n points per ellipse)".into(),
+        ),
+        (
             with_line(4, "size = [120.0]"),
             "scene.toml:4:8: box.size = [120.0]: must be [Lx, Ly, Lz] (a box of ellipsoids) or [Lx, Ly] (a 2D scene: a rectangle of ellipses), not 1 lengths".into(),
         ),

@@ -132,8 +132,11 @@ fn vtk(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<VtkSpec>
                 "output.vtk_resolution",
                 v,
                 format!(
-                    "must lie in [{MIN_VTK_RESOLUTION}, {MAX_VTK_RESOLUTION}] (20·4^n triangles \
-                     per grain)"
+                    "must lie in [{MIN_VTK_RESOLUTION}, {MAX_VTK_RESOLUTION}] ({})",
+                    match domain.dimension {
+                        Dimension::Three => "20·4^n triangles per grain",
+                        Dimension::Two => "a polygon of 8·2^n points per ellipse",
+                    }
                 ),
             ));
         }
