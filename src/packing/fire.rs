@@ -30,6 +30,8 @@ pub(crate) struct Context<'a> {
     /// test's measure of an overlap that matters.
     pub resolution: f64,
     pub stop: &'a AtomicBool,
+    /// When `packing.time_limit` runs out: a relaxation then stops as at `stop`.
+    pub deadline: Option<Instant>,
     pub progress: &'a mut dyn FnMut(&Progress),
 }
 
@@ -43,7 +45,7 @@ pub(crate) enum Outcome {
     Stuck,
     /// The step budget ran out.
     Budget,
-    /// The caller asked to stop.
+    /// The caller asked to stop, or the time limit ran out.
     Interrupted,
 }
 
@@ -146,7 +148,8 @@ impl Fire {
         masses(state, &mut self.root_mass);
         self.deep = false;
         for _ in 0..budget {
-            if run.stop.load(Ordering::Relaxed) {
+            if run.stop.load(Ordering::Relaxed) || run.deadline.is_some_and(|d| Instant::now() >= d)
+            {
                 return Ok(Outcome::Interrupted);
             }
             let Context {

@@ -107,6 +107,8 @@ pub enum StopReason {
     StepLimit,
     /// The caller asked to stop (Ctrl-C).
     Interrupted,
+    /// `packing.time_limit` ran out: the densest clean state found is kept.
+    TimeLimit,
 }
 
 impl StopReason {
@@ -117,6 +119,7 @@ impl StopReason {
             StopReason::Jammed => "jammed",
             StopReason::StepLimit => "step_limit",
             StopReason::Interrupted => "interrupted",
+            StopReason::TimeLimit => "time_limit",
         }
     }
 

@@ -85,6 +85,7 @@ use state::State;
 
 use crate::scene::GrainSpec;
 use std::sync::atomic::AtomicBool;
+use std::time::{Duration, Instant};
 
 /// Packs the grains into the domain. See the module docs for the algorithm.
 ///
@@ -129,6 +130,7 @@ pub fn pack(
         contact_gap: protocol.contact_gap,
         resolution: params.jam_resolution,
         stop,
+        deadline: (params.time_limit).map(|t| Instant::now() + Duration::from_secs_f64(t)),
         progress,
     };
     let mut fire = Fire::new(tuning.fire);
@@ -136,9 +138,14 @@ pub fn pack(
     let mut best: Option<Snapshot> = None;
     let mut stuck = f64::INFINITY;
     let mut s = 1.0;
-    let mut cycles_left = recompression_cycles(params.effort);
+    // With a time limit, cycles go on until the time is up.
+    let mut cycles_left = match params.time_limit {
+        Some(_) => u32::MAX,
+        None => recompression_cycles(params.effort),
+    };
     let depth = recompression(specs);
-    let mut unjammer = unjam::Unjammer::new(params.unjam, cycles_left, seed);
+    let mut unjammer =
+        unjam::Unjammer::new(params.unjam, recompression_cycles(params.effort), seed);
     // Until the first jam deep enough to search from (`effort::QUENCH_STEP`).
     let mut quenching = true;
     let reason = loop {
@@ -173,7 +180,7 @@ pub fn pack(
             left.min(budget),
         )?;
         match outcome {
-            Outcome::Interrupted => break StopReason::Interrupted,
+            Outcome::Interrupted => break interrupted(&run),
             Outcome::Clean => best = Some(Snapshot::of(&state, s.min(1.0))),
             Outcome::Stuck | Outcome::Budget => {
                 let shrunk = clean_scale(&mut state, &mut run, &protocol, s)?.min(1.0);
@@ -328,6 +335,15 @@ fn turn_back(
     let left = (budget - steps).min(protocol.stage_steps);
     let settled = fire.relax(state, run, s, big_s, left)?;
     Ok((settled == Outcome::Clean).then(|| Snapshot::of(state, s)))
+}
+
+/// Why a relaxation stopped early: the time limit if it has run out, else the caller.
+fn interrupted(run: &Context<'_>) -> StopReason {
+    if run.deadline.is_some_and(|d| Instant::now() >= d) {
+        StopReason::TimeLimit
+    } else {
+        StopReason::Interrupted
+    }
 }
 
 /// Puts the state back to a snapshot's centres and orientations.

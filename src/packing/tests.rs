@@ -172,6 +172,34 @@ fn a_raised_stop_flag_interrupts_with_a_clean_state() {
     assert!(p.verification.is_clean());
 }
 
+/// `packing.time_limit` on a scene that jams: the loop goes on past effort 1's search
+/// (recompression cycles, whatever `effort`) until the time is up, and keeps the
+/// densest clean state, at least as dense as effort 1's. The limit is three times
+/// what effort 1 took here, so the first search always fits in it.
+#[test]
+fn a_time_limit_runs_cycles_until_it_is_up_and_keeps_the_densest_clean_state() {
+    let started = std::time::Instant::now();
+    let (plain, _) = pack_with(DENSE_SPHEROIDS, |_| {});
+    let took = started.elapsed().as_secs_f64();
+    assert_eq!(plain.stop, StopReason::Jammed);
+    let limit = (3.0 * took).max(0.5);
+    let (timed, _) = pack_with(DENSE_SPHEROIDS, |p| p.time_limit = Some(limit));
+    assert_eq!(timed.stop, StopReason::TimeLimit);
+    assert!(timed.verification.is_clean(), "{:?}", timed.verification);
+    assert!(
+        timed.counters.steps > plain.counters.steps,
+        "{:?}",
+        timed.counters
+    );
+    assert!(timed.counters.swaps > 0, "{:?}", timed.counters);
+    assert!(
+        timed.fraction >= plain.fraction,
+        "{} < {}",
+        timed.fraction,
+        plain.fraction
+    );
+}
+
 #[test]
 fn a_tunable_out_of_range_is_refused_by_name_before_packing() {
     let scene = Scene::from_str(DENSE_SPHEROIDS, "test.toml").unwrap();

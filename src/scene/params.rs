@@ -40,6 +40,12 @@ pub struct PackingParams {
     /// inflated by 1 + `gap`; every fraction it reports is of the grains themselves.
     /// At least 0; default 0.
     pub gap: f64,
+    /// A time budget for the packing loop, in seconds (`packing.time_limit`): with it,
+    /// effort's recompression cycles go on, whatever `effort`, until the target is
+    /// reached or the time is up, and the densest clean state is kept
+    /// ([`StopReason::TimeLimit`](crate::packing::StopReason)). The grains' drawing,
+    /// the final check and the outputs come on top. Positive; default none.
+    pub time_limit: Option<f64>,
 }
 
 impl Default for PackingParams {
@@ -53,6 +59,7 @@ impl Default for PackingParams {
             effort: 1.0,
             unjam: Unjam::Swap,
             gap: 0.0,
+            time_limit: None,
         }
     }
 }

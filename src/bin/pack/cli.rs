@@ -53,6 +53,10 @@ pub struct SceneArgs {
     /// depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<NonZeroUsize>,
+    /// A time budget for packing, in seconds (overrides the scene's
+    /// packing.time_limit): the densest overlap-free state found by then is kept.
+    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
+    pub time_limit: Option<f64>,
     /// No progress bar and no closing report on stderr; errors and the reason a
     /// target was not reached are still printed.
     #[arg(long, short)]
@@ -109,5 +113,13 @@ pub fn parse() -> Invocation {
                 "give a scene file (pack SCENE.toml) or a subcommand (pack contact CASES.csv)",
             )
             .exit(),
+    }
+}
+
+/// A positive, finite number of seconds.
+fn positive_seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        _ => Err(format!("{text:?} is not a positive number of seconds")),
     }
 }

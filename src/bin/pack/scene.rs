@@ -38,6 +38,9 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     if let Some(dir) = &options.out {
         scene.output.dir.clone_from(dir);
     }
+    if options.time_limit.is_some() {
+        scene.packing.time_limit = options.time_limit;
+    }
     // The mesher's gmsh is looked for before packing, not after a long run.
     if scene.output.mesh.is_some() {
         gmsh_version(&python()).map_err(|e| Failure::bad_input(anyhow!(e)))?;
@@ -55,7 +58,8 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
     let mut bar = Bar::new(options.quiet, scene.expected_count().round() as usize);
     let mut progress = |p: &Progress| bar.update(p);
     let swaps = scene.packing.unjam != Unjam::None
-        && scene.packing.effort >= grainpack::packing::MIN_CYCLE_EFFORT;
+        && (scene.packing.effort >= grainpack::packing::MIN_CYCLE_EFFORT
+            || scene.packing.time_limit.is_some());
     let mut drawn = |d: &Drawn| {
         if d.above_reachable() {
             warn_unreachable(d, swaps);
@@ -229,6 +233,10 @@ fn why(stop: StopReason, scene: &Scene) -> String {
             scene.packing.max_steps
         ),
         StopReason::Interrupted => "interrupted (Ctrl-C)".to_owned(),
+        StopReason::TimeLimit => format!(
+            "time limit: {} s of packing (packing.time_limit or --time-limit) ran out",
+            scene.packing.time_limit.unwrap_or(f64::NAN)
+        ),
     }
 }
 

@@ -225,6 +225,7 @@ pub(crate) struct RawPacking {
     pub effort: Opt<f64>,
     pub unjam: Opt<String>,
     pub gap: Opt<f64>,
+    pub time_limit: Opt<f64>,
 }
 
 /// `[output]`.

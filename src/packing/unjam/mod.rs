@@ -36,7 +36,7 @@ mod anneal;
 mod monte_carlo;
 mod swap;
 
-use super::fire::{Context, Fire};
+use super::fire::{Context, Fire, Outcome};
 use super::state::State;
 use super::{PackError, ProtocolParams};
 use crate::scene::Unjam;
@@ -151,7 +151,9 @@ impl Unjammer {
             if round + 1 < self.rounds {
                 // The loop's own relaxation follows the last round.
                 run.counters.steps += 1;
-                fire.relax(state, run, next, big_s, SWAP_RELAX_STEPS)?;
+                if fire.relax(state, run, next, big_s, SWAP_RELAX_STEPS)? == Outcome::Interrupted {
+                    break;
+                }
             }
         }
         Ok(())

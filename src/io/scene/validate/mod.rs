@@ -283,6 +283,16 @@ fn packing(
         }
         params.jam_resolution = *v.get_ref();
     }
+    if let Some(v) = &raw.time_limit {
+        if !(v.get_ref().is_finite() && *v.get_ref() > 0.0) {
+            return Err(src.invalid_at(
+                "packing.time_limit",
+                v,
+                "must be a positive number of seconds",
+            ));
+        }
+        params.time_limit = Some(*v.get_ref());
+    }
     if let Some(v) = &raw.effort {
         if !(*v.get_ref() >= MIN_EFFORT && *v.get_ref() <= MAX_EFFORT) {
             return Err(src.invalid_at("packing.effort", v, "must lie in [0.1, 100]"));
@@ -332,7 +342,10 @@ fn packing(
                     "must be \"none\", \"swap\" or \"anneal\"",
                 )
             })?;
-        if params.unjam != Unjam::None && params.effort < crate::packing::MIN_CYCLE_EFFORT {
+        if params.unjam != Unjam::None
+            && params.effort < crate::packing::MIN_CYCLE_EFFORT
+            && params.time_limit.is_none()
+        {
             return Err(src.invalid_at(
                 "packing.unjam",
                 v,
