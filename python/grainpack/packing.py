@@ -116,7 +116,8 @@ class Packing:
 
     @property
     def stop_reason(self) -> str:
-        """``target_reached``, ``jammed`` or ``step_limit``."""
+        """``target_reached``, ``jammed``, ``step_limit``, ``interrupted`` or
+        ``time_limit`` (the scene's ``packing.time_limit`` ran out)."""
         return self._native.stop_reason
 
     @property

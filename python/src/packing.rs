@@ -253,7 +253,8 @@ impl PyPacking {
         self.result.seed
     }
 
-    /// Why the loop stopped: `target_reached`, `jammed`, `step_limit`.
+    /// Why the loop stopped: `target_reached`, `jammed`, `step_limit`, `interrupted` or
+    /// `time_limit` (`packing.time_limit`).
     #[getter]
     fn stop_reason(&self) -> &'static str {
         self.result.packing.stop.name()
