@@ -12,8 +12,8 @@
 //! between compressions the packing explores its configurations, so it jams where a
 //! slowly compressed packing would, denser than the quench of the compress-and-relax
 //! loop. On Rocks and Hoy's ellipses (1 000, aspect 1.3–1.4, minor axes over 1.4, free
-//! to turn) a cycle reaches 0.897 where the quench jams at 0.886 and a swap cycle at
-//! 0.888 (BENCHMARKS.md, "2D packings against the jamming literature").
+//! to turn) a cycle reaches 0.8965–0.8969 (seeds 1–3) where the quench jams at 0.886
+//! and swap cycles at 0.888 (BENCHMARKS.md, "Annealing").
 
 use super::monte_carlo::{MonteCarlo, Moves};
 use crate::packing::fire::{Context, Fire, Outcome};
@@ -22,19 +22,21 @@ use crate::packing::{clean_scale, PackError, ProtocolParams};
 use rand_chacha::ChaCha8Rng;
 
 /// How far below the jamming point the annealing starts, relatively in scale (3 %:
-/// about 6 % of packing fraction in 2D, 9 % in 3D). On Rocks and Hoy's 1 000 ellipses
-/// 0.03 reached 0.8971 and 0.05 (from 0.80) 0.8921 with the same sweeps (10 per
-/// step, rate 1e-3 and 5e-4): a start nearer the jamming point spends the sweeps
-/// where the packing is dense enough for them to matter.
+/// about 6 % of packing fraction in 2D, 9 % in 3D). The schedule was chosen on Rocks
+/// and Hoy's 1 000 ellipses (seed 1, effort 1.5; start below the jamming point, sweeps
+/// per step, growth per step → φ reached): 5 %, 5, 1e-3 → 0.8904; 5 %, 20, 1e-3 →
+/// 0.8921; 3 %, 10, 5e-4 → 0.8927; 3 %, 40, 5e-4 → 0.8971; 3 %, 20, 2.5e-4 → 0.8978;
+/// 2 %, 50, 2e-4 → 0.8993 (in twice the time). What counts is the sweeps per unit of
+/// growth; a start nearer the jamming point spends them where the packing is dense
+/// enough for them to matter (BENCHMARKS.md, "Annealing").
 pub(crate) const ANNEAL_SHRINK: f64 = 0.03;
 
-/// Relative growth of scale per step of the annealing. Halving it (2.5e-4, with
-/// 20 sweeps per step) reached 0.8978 against 0.8971 for 5e-4 with 40 sweeps, in
-/// about the same time: what counts is the sweeps per unit of growth.
+/// Relative growth of scale per step of the annealing (see [`ANNEAL_SHRINK`]).
 pub(crate) const ANNEAL_RATE: f64 = 2.5e-4;
 
-/// Monte Carlo sweeps before each step of growth. 20 reached 0.8965–0.8978, 40
-/// 0.8971, 10 (at twice the rate) 0.8904 on the ellipses above.
+/// Monte Carlo sweeps before each step of growth (see [`ANNEAL_SHRINK`]): with
+/// [`ANNEAL_RATE`], 80 000 sweeps per unit of relative growth, about 20 s for 1 000
+/// ellipses on one core.
 pub(crate) const ANNEAL_SWEEPS: usize = 20;
 
 /// The budget of the relaxation after each step of growth: a step of [`ANNEAL_RATE`]
