@@ -238,6 +238,6 @@ def test_a_time_limit_keeps_the_densest_clean_state():
     )
     p = gp.pack(gp.Scene.from_toml(text), progress=False)
     assert p.stop_reason == "time_limit"
-    summary = p.summary()
+    summary = p.summary
     assert summary["overlapping_pairs"] == 0
     assert 0.5 < summary["packing_fraction"] < 0.70
