@@ -27,7 +27,8 @@
 //!    counts as jammed at that scale. A first jam that is *shallow* (the target just
 //!    above the jamming point: the relaxation from random positions creeps, and is cut
 //!    after [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by
-//!    the jamming test's patience) sets no bound: the state is compressed by 2 % of scale and relaxed
+//!    the jamming test's patience) sets no bound (from `effort` 0.5 on; below, the
+//!    search starts from it): the state is compressed by 2 % of scale and relaxed
 //!    again until a jam is deep, and the search starts from there, so that a start
 //!    just above jamming costs and reaches about what one far above it does (`effort.rs`,
 //!    `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed state is then
@@ -76,7 +77,7 @@ pub use verify::{verify, MIN_GAP_REACH};
 use crate::scene::{Boundary, Rotation};
 use effort::{
     recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW, QUENCH_LIMIT,
-    QUENCH_STEP,
+    QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
 use fire::{Context, Fire, Outcome};
 use jamming::Patience;
@@ -188,7 +189,8 @@ pub fn pack(
                     best = Some(Snapshot::of(&state, shrunk));
                 }
                 // A shallow first jam is a poor start for the search: compress further.
-                if quenching && !fire.deep && s < QUENCH_LIMIT {
+                if quenching && !fire.deep && s < QUENCH_LIMIT && params.effort >= QUENCH_MIN_EFFORT
+                {
                     s *= 1.0 + QUENCH_STEP;
                     continue;
                 }
