@@ -29,7 +29,7 @@ use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 /// File name of the gmsh mesh (format 4.1).
 pub const MESH_MSH: &str = "mesh.msh";
@@ -50,8 +50,18 @@ pub const GMSH_INSTALL_HINT: &str = "install gmsh's Python package into the pyth
 /// stderr); `EXIT_MESH_FAILED` in `gmsh_mesh.py`.
 const SCRIPT_MESH_FAILED: i32 = 3;
 
-/// The mesher, embedded so that `pack` needs no file beside it.
-const SCRIPT: &str = include_str!("gmsh_mesh.py");
+/// The mesher's Python modules (name, source), embedded so that `pack` needs no file
+/// beside it; `LOADER` makes them importable and runs `gmsh_mesh.main()`.
+const MODULES: [(&str, &str); 5] = [
+    ("gmsh_mesh", include_str!("gmsh_mesh.py")),
+    ("mesh_common", include_str!("mesh_common.py")),
+    ("mesh_geometry", include_str!("mesh_geometry.py")),
+    ("mesh_nodes", include_str!("mesh_nodes.py")),
+    ("mesh_write", include_str!("mesh_write.py")),
+];
+
+/// Run as `python -c LOADER job.json`, with [`MODULES`] as a JSON object on stdin.
+const LOADER: &str = include_str!("loader.py");
 
 /// Why the mesh could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -187,15 +197,10 @@ pub fn write_mesh(
     let result = (|| {
         let text = serde_json::to_vec(&job).map_err(|e| io(std::io::Error::other(e)))?;
         fs::write(&job_path, text).map_err(io)?;
-        let out = Command::new(python)
-            .arg("-c")
-            .arg(SCRIPT)
-            .arg(&job_path)
-            .output()
-            .map_err(|e| MeshError::GmshMissing {
-                python: python.to_owned(),
-                detail: e.to_string(),
-            })?;
+        let out = run_script(python, &job_path).map_err(|e| MeshError::GmshMissing {
+            python: python.to_owned(),
+            detail: e.to_string(),
+        })?;
         if !out.status.success() {
             let err = String::from_utf8_lossy(&out.stderr).trim().to_owned();
             return Err(match out.status.code() {
@@ -214,4 +219,27 @@ pub fn write_mesh(
     })();
     cleanup();
     result
+}
+
+/// Runs the mesher on the job at `job` in `python`: [`LOADER`] on the command line,
+/// [`MODULES`] on its stdin (which the loader reads whole before anything else).
+fn run_script(python: &str, job: &Path) -> std::io::Result<std::process::Output> {
+    let sources: serde_json::Map<String, serde_json::Value> = MODULES
+        .iter()
+        .map(|&(name, source)| (name.to_owned(), source.into()))
+        .collect();
+    let mut child = Command::new(python)
+        .arg("-c")
+        .arg(LOADER)
+        .arg(job)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    let mut stdin = child.stdin.take().expect("stdin is piped");
+    let written = serde_json::to_writer(&mut stdin, &sources).map_err(std::io::Error::other);
+    // Closed before waiting, so the loader sees the end of its input.
+    drop(stdin);
+    let out = child.wait_with_output()?;
+    written.map(|()| out)
 }
