@@ -27,6 +27,7 @@ from mesh_common import MeshError, percentile
 from mesh_geometry import build_geometry, half_extents, make_periodic, window
 from mesh_nodes import (TET10_ORDER, check_faces, extract, group_by_grain, mid_images,
                         number_nodes, pair_by_coordinates, tet_volume)
+from mesh_plane import mesh_plane
 from mesh_write import write_inp, write_vtu
 
 # Exit code for "gmsh could not mesh this packing" (pack maps it to its message).
@@ -176,7 +177,8 @@ def main():
         return 2
     gmsh.initialize(["grainpack"], readConfigFiles=False)
     try:
-        stats = mesh(gmsh, job)
+        # A 2D scene's job: triangles of the rectangle (mesh_plane.py).
+        stats = (mesh_plane if job.get("dimension") == 2 else mesh)(gmsh, job)
     except MeshError as e:
         print(f"{e}", file=sys.stderr)
         return EXIT_MESH_FAILED

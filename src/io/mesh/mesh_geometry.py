@@ -45,12 +45,13 @@ def best_shift(lows, highs, length):
 
 def window(job):
     """Origin of the meshed box: the packing's box shifted (periodic only) so that no
-    grain's tangent plane lies near a face; and the margin reached per axis."""
+    grain's tangent plane lies near a face; and the margin reached per axis (the
+    rectangle's two in 2D)."""
     size = job["box"]
     if not job["periodic"]:
-        return [0.0, 0.0, 0.0], [None, None, None]
+        return [0.0] * len(size), [None] * len(size)
     origin, margins = [], []
-    for d in range(3):
+    for d in range(len(size)):
         lows = [g["centre"][d] - g["extent"][d] for g in job["grains"]]
         highs = [g["centre"][d] + g["extent"][d] for g in job["grains"]]
         s, m = best_shift(lows, highs, size[d])
@@ -61,18 +62,19 @@ def window(job):
 
 
 def images(grain, origin, size, periodic):
-    """The grain's translations that meet the box [origin, origin + size)."""
+    """The grain's translations that meet the box [origin, origin + size) (in 2D the
+    rectangle: the shift along z is 0)."""
     shifts = [[0.0]] * 3
     if periodic:
-        shifts = []
-        for d in range(3):
+        shifts = [[0.0]] * (3 - len(size))
+        for d in reversed(range(len(size))):
             c, e = grain["centre"][d], grain["extent"][d]
             # The copy nearest the window, then its neighbours if they reach in.
             k0 = math.floor((c - origin[d]) / size[d])
             base = c - k0 * size[d]
             options = [base - size[d], base, base + size[d]]
-            shifts.append([p - c for p in options
-                           if p + e > origin[d] and p - e < origin[d] + size[d]])
+            shifts.insert(0, [p - c for p in options
+                              if p + e > origin[d] and p - e < origin[d] + size[d]])
     return [(a, b, c) for a in shifts[0] for b in shifts[1] for c in shifts[2]]
 
 

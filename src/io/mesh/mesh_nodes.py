@@ -22,7 +22,7 @@ def pair_by_coordinates(coords, origin, size):
     grid = {}
     far_of = {}
     for n, p in coords.items():
-        far = [d for d in range(3) if on_plane(p[d], origin[d] + size[d], length)]
+        far = [d for d in range(len(size)) if on_plane(p[d], origin[d] + size[d], length)]
         far_of[n] = far
         if not far:
             grid.setdefault(tuple(math.floor(c / cell) for c in p), []).append(n)
@@ -64,7 +64,7 @@ def mid_images(elements, coords, images, origin, size):
             middle[frozenset((conn[i], conn[j]))] = conn[4 + k]
 
     def far_axes(n):
-        return {d for d in range(3) if on_plane(coords[n][d], origin[d] + size[d], length)}
+        return {d for d in range(len(size)) if on_plane(coords[n][d], origin[d] + size[d], length)}
 
     def across(n, axes):
         if n not in images:
@@ -113,7 +113,8 @@ def number_nodes(gmsh, pieces, origin):
     coords = {int(t): (float(xyz[3 * i]), float(xyz[3 * i + 1]), float(xyz[3 * i + 2]))
               for i, t in enumerate(tags)}
     used = sorted({n for _, _, conn in pieces for e in conn for n in e})
-    corner = min(used, key=lambda n: sum((coords[n][d] - origin[d]) ** 2 for d in range(3)))
+    corner = min(used, key=lambda n: sum((coords[n][d] - origin[d]) ** 2
+                                         for d in range(len(origin))))
     order = [corner] + [n for n in used if n != corner]
     new = {old: i + 1 for i, old in enumerate(order)}
     unused = [int(t) for t in tags if int(t) not in new]
@@ -142,7 +143,7 @@ def check_faces(coords, images, origin, size):
     """Every node on a far face is a dependent of a periodic equation."""
     length = max(size)
     for n, p in coords.items():
-        far = [d for d in range(3) if on_plane(p[d], origin[d] + size[d], length)]
+        far = [d for d in range(len(size)) if on_plane(p[d], origin[d] + size[d], length)]
         if far and n not in images:
             raise MeshError(f"node {n} at {p} lies on a far box face but has no periodic "
                             "partner")

@@ -97,12 +97,14 @@ def write_inp(path, job, coords, elements, images, origin):
 
 
 def write_node_sets(f, coords, origin, size):
-    """Faces X0 ... Z1, edges X0Y0 ..., corners X0Y0Z0 ..., as in rve.inp."""
+    """Faces X0 ... Z1, edges X0Y0 ..., corners X0Y0Z0 ..., as in rve.inp; in 2D (two
+    lengths in `size`) the edges X0 ... Y1 and the corners X0Y0 ..."""
+    axes = len(size)
     length = max(size)
     side = {}
     for n, p in coords.items():
         s = []
-        for d in range(3):
+        for d in range(axes):
             if on_plane(p[d], origin[d], length):
                 s.append(1)
             elif on_plane(p[d], origin[d] + size[d], length):
@@ -110,21 +112,26 @@ def write_node_sets(f, coords, origin, size):
             else:
                 s.append(0)
         side[n] = s
-    for fixed in (1, 2, 3):
-        for mask in range(27):
-            sides = [mask % 3, (mask // 3) % 3, mask // 9]
+    for fixed in range(1, axes + 1):
+        for mask in range(3 ** axes):
+            sides = [(mask // 3 ** d) % 3 for d in range(axes)]
             if sum(1 for s in sides if s) != fixed:
                 continue
-            name = "".join(f"{'XYZ'[d]}{sides[d] - 1}" for d in range(3) if sides[d])
+            name = "".join(f"{'XYZ'[d]}{sides[d] - 1}" for d in range(axes) if sides[d])
             ids = [n for n in sorted(coords)
-                   if all(sides[d] == 0 or side[n][d] == sides[d] for d in range(3))]
+                   if all(sides[d] == 0 or side[n][d] == sides[d] for d in range(axes))]
             write_list(f, f"*Nset, nset={name}", ids)
 
 
-def write_vtu(path, coords, elements, order, phases):
-    """mesh.vtu: the tetrahedra with cell data grain (-1: matrix), phase (the matrix
-    is phase `phases`, as in rve.vti) and SICN."""
-    vtk_type = 10 if order == 1 else 24
+# VTK's cell type and nodes per cell by (dimension, order): tetrahedra, triangles.
+VTK_CELLS = {(3, 1): (10, 4), (3, 2): (24, 10), (2, 1): (5, 3), (2, 2): (22, 6)}
+
+
+def write_vtu(path, coords, elements, order, phases, dimension=3):
+    """mesh.vtu: the tetrahedra (triangles in the plane z = 0 in 2D) with cell data
+    grain (-1: matrix), phase (the matrix is phase `phases`, as in rve.vti) and SICN.
+    `coords` holds three coordinates per node."""
+    vtk_type, npe = VTK_CELLS[(dimension, order)]
     n_nodes = len(coords)
     with open(path, "w") as f:
         f.write('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" '
@@ -139,7 +146,6 @@ def write_vtu(path, coords, elements, order, phases):
         for _, conn, _, _ in elements:
             f.write(" ".join(str(n - 1) for n in conn) + "\n")
         f.write('</DataArray>\n<DataArray type="Int64" Name="offsets" format="ascii">\n')
-        npe = 4 if order == 1 else 10
         f.write(" ".join(str(npe * (i + 1)) for i in range(len(elements))) + "\n")
         f.write('</DataArray>\n<DataArray type="UInt8" Name="types" format="ascii">\n')
         f.write(" ".join([str(vtk_type)] * len(elements)) + "\n")

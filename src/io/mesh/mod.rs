@@ -1,5 +1,6 @@
 //! The conforming mesh (`[output] mesh = true`): the packed grains and the matrix
-//! between them as body-fitted tetrahedra, periodic in a periodic box, made by gmsh.
+//! between them as body-fitted tetrahedra (triangles of the rectangle in 2D, for a
+//! plane-strain deck), periodic in a periodic box, made by gmsh.
 //!
 //! grainpack drives gmsh through its Python API: `gmsh_mesh.py`, embedded in this
 //! library, runs in a Python with the `gmsh` package (`pip install gmsh==4.15.2`):
@@ -52,12 +53,14 @@ const SCRIPT_MESH_FAILED: i32 = 3;
 
 /// The mesher's Python modules (name, source), embedded so that `pack` needs no file
 /// beside it; `LOADER` makes them importable and runs `gmsh_mesh.main()`.
-const MODULES: [(&str, &str); 5] = [
+const MODULES: [(&str, &str); 7] = [
     ("gmsh_mesh", include_str!("gmsh_mesh.py")),
     ("mesh_common", include_str!("mesh_common.py")),
     ("mesh_geometry", include_str!("mesh_geometry.py")),
     ("mesh_nodes", include_str!("mesh_nodes.py")),
     ("mesh_write", include_str!("mesh_write.py")),
+    ("mesh_plane", include_str!("mesh_plane.py")),
+    ("mesh_plane_write", include_str!("mesh_plane_write.py")),
 ];
 
 /// Run as `python -c LOADER job.json`, with [`MODULES`] as a JSON object on stdin.
@@ -95,11 +98,11 @@ pub enum MeshError {
 /// What the mesher measured, as `summary.json` reports it (`mesh`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MeshStats {
-    /// Tetrahedra.
+    /// Elements: tetrahedra, triangles in 2D.
     pub elements: usize,
     /// Nodes (the reference nodes not counted).
     pub nodes: usize,
-    /// Element order (1: C3D4, 2: C3D10).
+    /// Element order (1: C3D4, 2: C3D10; in 2D 1: CPE3, 2: CPE6).
     pub order: u8,
     /// Largest element edge asked of gmsh, in the scene's length unit.
     pub element_size: f64,
@@ -115,20 +118,22 @@ pub struct MeshStats {
     /// Whether the first attempt failed on a periodic curve and the retry with sizes
     /// from curvature was needed.
     pub retried_with_curvature: bool,
-    /// Lower corner of the meshed window of the periodic packing.
-    pub origin: [f64; 3],
+    /// Lower corner of the meshed window of the periodic packing (two coordinates in
+    /// 2D, where the mesh lies in the plane z = 0).
+    pub origin: Vec<f64>,
     /// Per axis, the least distance from a box face to a grain's tangent plane
-    /// (periodic box only).
-    pub face_margin: Option<[f64; 3]>,
-    /// Pairs of opposite face pieces made periodic.
+    /// (periodic box only; two axes in 2D).
+    pub face_margin: Option<Vec<f64>>,
+    /// Pairs of opposite face pieces made periodic (in 2D, pieces of the edges).
     pub periodic_face_pairs: usize,
     /// Nodes tied to an image by periodic equations.
     pub periodic_nodes: usize,
     /// Largest distance a periodic node moved when snapped onto its master plus the
     /// box length.
     pub largest_snap: f64,
-    /// Per phase (the matrix last), the volume fraction of the mesh's elements against
-    /// the packing's exact one: they differ by the chordal error of the elements.
+    /// Per phase (the matrix last), the volume fraction (area fraction in 2D) of the
+    /// mesh's elements against the packing's exact one: they differ by the chordal
+    /// error of the elements.
     pub phase_volume_fractions: Vec<PhaseVolume>,
     /// gmsh's version.
     pub gmsh: String,
@@ -139,9 +144,10 @@ pub struct MeshStats {
 pub struct PhaseVolume {
     /// Phase index (the number of phases for the matrix).
     pub phase: usize,
-    /// Σ element volumes / box volume (straight-sided elements).
+    /// Σ element volumes / box volume (straight-sided elements; areas in 2D).
     pub mesh: f64,
-    /// Σ (4π/3) a1 a2 a3 / box volume (the matrix: the rest).
+    /// Σ (4π/3) a1 a2 a3 / box volume (in 2D Σ π a1 a2 / rectangle area; the matrix:
+    /// the rest).
     pub exact: f64,
 }
 
