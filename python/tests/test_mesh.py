@@ -67,8 +67,6 @@ gap = 0.05
 size = { distribution = "uniform", min = 1.8, max = 2.8 }
 aspect_ratio = { distribution = "uniform", min = 1.0, max = 1.8 }
 elastic = { E = 100.0, nu = 0.3 }
-[matrix]
-elastic = { E = 10.0, nu = 0.35 }
 """
 
 
