@@ -108,7 +108,11 @@ def extract(gmsh, volumes, order):
 
 def number_nodes(gmsh, pieces, origin):
     """Renumbers the used nodes 1..N in gmsh itself (so mesh.msh and mesh.inp agree),
-    the box's origin corner first: the step template fixes node 1."""
+    the box's origin corner first: the step template fixes node 1. A gmsh that
+    returned without elements (seen after a retry that cleared the mesh) is an error."""
+    if not any(conn for _, _, conn in pieces):
+        log = [line for line in gmsh.logger.get() if "rror" in line][-3:]
+        raise MeshError("gmsh returned no elements" + (": " + "; ".join(log) if log else ""))
     tags, xyz, _ = gmsh.model.mesh.getNodes()
     coords = {int(t): (float(xyz[3 * i]), float(xyz[3 * i + 1]), float(xyz[3 * i + 2]))
               for i, t in enumerate(tags)}

@@ -161,6 +161,7 @@ def mesh_plane(gmsh, job):
     gmsh.option.setNumber("Mesh.ElementOrder", order)
     gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
     gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
+    gmsh.logger.start()
     try:
         gmsh.model.mesh.generate(2)
     except Exception as e:  # gmsh raises plain Exception
