@@ -4,6 +4,7 @@
     python tools/bench_mesh.py scale [--grains 50 200] [--fractions 0.3 0.5] \
         [--timeout 600] [--pack target/release/pack] [--work DIR]
     python tools/bench_mesh.py voxel [--resolutions 16 24 32 40] [--pack ...] [--work DIR]
+    python tools/bench_mesh.py plane --resolutions 120 240 360 --meshes 0.3:1 0.15:2 [...]
 
 Needs gmsh in the Python that `pack` runs ($GRAINPACK_PYTHON, else python3), CalculiX
 `ccx` (voxel), and /usr/bin/time (scale). Only the standard library.
@@ -23,11 +24,16 @@ C3D10 at mesh_size 0.3, C3D4 at 0.15: --meshes 0.3:1 0.3:2 0.15:1); E along x, y
 (tools/ccx_solve.py's steps); the voxel moduli extrapolated to zero voxel size by a
 least-squares line in the voxel size h (first-order convergence of a staircase
 interface), and each mesh's mean modulus against it.
+
+plane: the same for a 2D scene (--scene, configs/fibres_2d.toml): its pixel deck at
+--resolutions and its triangle meshes at --meshes, E'x, E'y, k and mu of each by
+tools/ccx_plane.py, the pixels' extrapolated to zero pixel size from the 3 finest.
 """
 
 import argparse
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -35,6 +41,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ccx_plane import plane_moduli  # noqa: E402
 from ccx_solve import solve  # noqa: E402
 
 MEAN_GRAIN_VOLUME = 18.93  # pi/6 E[d^3], d uniform in [2.5, 4]
@@ -209,9 +216,48 @@ def voxel(args, work):
         sys.stdout.flush()
 
 
+def plane(args, work):
+    """A 2D scene's packing (--scene, configs/fibres_2d.toml) as the pixel deck at
+    several resolutions and as conforming triangle meshes; E'x, E'y, k and mu of each
+    by tools/ccx_plane.py's four plane-strain steps."""
+    with open(args.scene) as f:
+        base = f.read().replace("damask = true", "damask = false")
+    keys = ["E_x", "E_y", "k", "mu"]
+
+    def moduli2(name, extra, deck, n=None):
+        text = base.replace('dir = "out/fibres_2d"', f'dir = "{name}"\n{extra}')
+        if n is not None:
+            text = re.sub(r"rve_resolution = \d+", f"rve_resolution = {n}", text)
+        s, wall, _, _, err = run_pack(args.pack, work, name, text)
+        if s is None:
+            raise RuntimeError(err)
+        started = time.time()
+        m, _, _ = plane_moduli(os.path.join(work, name, deck), work)
+        print(f"{name}: " + ", ".join(f"{k} = {m[k]:.2f}" for k in keys)
+              + f" (written in {wall:.1f} s, 4 solves in {time.time() - started:.0f} s)")
+        sys.stdout.flush()
+        return s, m
+
+    rows = []
+    for n in args.resolutions:
+        s, m = moduli2(f"pixels{n}", "", "rve.inp", n)
+        rows.append((s["box"][0] / n, m))
+    for k in keys:
+        fit = [(h, m[k]) for h, m in rows]
+        e0, c, worst = line(fit[-3:])
+        print(f"pixels, {k} extrapolated to h = 0 from the 3 finest: {e0:.2f} (residual "
+              f"{worst:.3f})")
+    for spec in args.meshes:
+        size, order = float(spec.split(":")[0]), int(spec.split(":")[1])
+        s, m = moduli2(f"mesh_{size}_{order}", f"mesh = true\nmesh_size = {size}\n"
+                       f"mesh_order = {order}", "mesh.inp")
+        print(f"  {s['mesh']['elements']} triangles")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("what", choices=["scale", "voxel"])
+    parser.add_argument("what", choices=["scale", "voxel", "plane"])
+    parser.add_argument("--scene", default="configs/fibres_2d.toml", help="plane: the 2D scene")
     parser.add_argument("--grains", type=int, nargs="+", default=[50, 200])
     parser.add_argument("--fractions", type=float, nargs="+", default=[0.3, 0.5])
     parser.add_argument("--resolutions", type=int, nargs="+", default=[16, 24, 32, 40])
@@ -224,7 +270,7 @@ def main():
     args.pack = os.path.abspath(args.pack)
     work = args.work or tempfile.mkdtemp(prefix="bench_mesh_")
     os.makedirs(work, exist_ok=True)
-    (scale if args.what == "scale" else voxel)(args, work)
+    {"scale": scale, "voxel": voxel, "plane": plane}[args.what](args, work)
     return 0
 
 
