@@ -146,3 +146,29 @@ fn without_gmsh_pack_says_how_to_install_it_before_packing() {
     // Refused before packing: nothing was written, not even the output directory.
     assert_eq!(files_in(&dir), ["scene.toml"]);
 }
+
+#[test]
+fn a_2d_scene_takes_the_mesh_keys_and_names_its_elements() {
+    let plane =
+        |keys: &str| scene(0.05, keys).replace("size = [20.0, 20.0, 20.0]", "size = [20.0, 20.0]");
+    let spec = Scene::from_str(&plane("mesh = true\nmesh_order = 2"), "scene.toml")
+        .unwrap_or_else(|e| panic!("a 2D mesh rejected: {e}"))
+        .output
+        .mesh;
+    assert_eq!(
+        spec,
+        Some(MeshSpec {
+            size: DEFAULT_MESH_SIZE,
+            order: 2
+        })
+    );
+    assert_starts(
+        &scene_error(&plane("mesh = true\nmesh_order = 3")),
+        "scene.toml:15:14: output.mesh_order = 3: must be 1 (linear triangles, CPE3) or 2",
+    );
+    // The gap is needed in 2D as in 3D.
+    assert_starts(
+        &scene_error(&plane("mesh = true").replace("gap = 0.05", "gap = 0.01")),
+        "scene.toml:12:7: packing.gap = 0.01: output.mesh = true",
+    );
+}

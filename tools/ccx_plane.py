@@ -1,5 +1,6 @@
-"""The plane-strain (2D) solves of tools/ccx_solve.py: CalculiX on a CPE4 deck `pack`
-writes for a 2D RVE (rve.inp), and the 2D Hashin-Shtrikman bounds.
+"""The plane-strain (2D) solves of tools/ccx_solve.py: CalculiX on a plane-strain deck
+`pack` writes for a 2D RVE (rve.inp on pixels, CPE4; mesh.inp on the conforming
+triangles, CPE3 or CPE6), and the 2D Hashin-Shtrikman bounds.
 
 Four steps replace the deck's template, each imposing the macroscopic strain through
 the reference nodes (u(RPX) = H (Lx, 0), u(RPY) = H (0, Ly)); forces are per unit
@@ -68,8 +69,8 @@ def read_deck(deck):
         text = f.read()
     model = text.split(STEP_MARKER)[0]
     m = re.search(r"rectangle (\S+) x (\S+) ", model)
-    if "CPE4" not in model or m is None:
-        raise RuntimeError(f"{deck} is not a plane-strain (CPE4) deck")
+    if re.search(r"\*Element, type=CPE[346]\b", model) is None or m is None:
+        raise RuntimeError(f"{deck} is not a plane-strain (CPE3, CPE4 or CPE6) deck")
     size = [float(m.group(1)), float(m.group(2))]
     sets, materials, name, material = {}, {}, None, None
     lines = model.splitlines()

@@ -37,7 +37,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ccx_solve import HOMOGENEOUS_TOL, STRAIN, hashin_shtrikman, kg, solve  # noqa: E402
+from ccx_solve import (HOMOGENEOUS_TOL, STRAIN, check_plane_composite,  # noqa: E402
+                       check_plane_homogeneous, hashin_shtrikman, kg, solve)
 
 # Opposite nodes must match to this fraction of the box length (issue 29): gmsh's
 # copies sit up to 1e-8 L off, which pack snaps onto master + L exactly.
@@ -86,22 +87,91 @@ SCENES = {
                    e_matrix=210.0, nu_matrix=0.3, boundary="reflecting"),
 }
 
+# A 2D scene (a rectangle: two lengths): ellipses meshed as triangles for a
+# plane-strain deck, at order 1 (CPE3) and 2 (CPE6).
+PLANE_SCENE = """
+seed = {seed}
+target_fraction = 0.5
+[box]
+size = [10.0, 10.0]
+boundary = "{boundary}"
+[packing]
+gap = 0.05
+[[phase]]
+name = "fibre"
+size = {{ distribution = "uniform", min = 1.8, max = 2.8 }}
+aspect_ratio = {{ distribution = "uniform", min = 1.0, max = 1.8 }}
+elastic = {{ E = {e_grain}, nu = 0.3 }}
+[matrix]
+elastic = {{ E = {e_matrix}, nu = {nu_matrix} }}
+[output]
+dir = "{name}"
+vtk = false
+centers = false
+statistics_png = false
+packing_png = false
+mesh = true
+mesh_size = 0.3
+mesh_order = {order}
+"""
+
+# Fibres (E 100) in a matrix (E 10, nu 0.35); solved as written (a composite, in the
+# 2D Hashin-Shtrikman bounds of the mesh's own area fraction) and with every material
+# replaced by one (E 210, nu 0.3: E/(1-nu^2) and nu/(1-nu) back). The seed is one with
+# a grain across a corner of the window (13 ellipses). Walls: one material, run as
+# written.
+PLANE_SCENES = {
+    "plane_linear": dict(seed=5, order=1, boundary="periodic", e_grain=100.0,
+                         e_matrix=10.0, nu_matrix=0.35),
+    "plane_quadratic": dict(seed=5, order=2, boundary="periodic", e_grain=100.0,
+                            e_matrix=10.0, nu_matrix=0.35),
+    "plane_walled": dict(seed=5, order=1, boundary="reflecting", e_grain=210.0,
+                         e_matrix=210.0, nu_matrix=0.3),
+}
+
+
+def one_material(deck, out):
+    """`deck` with every *Elastic line made E 210, nu 0.3, written to `out`."""
+    with open(deck) as f:
+        lines = f.read().split("\n")
+    for i in range(1, len(lines)):
+        if lines[i - 1] == "*Elastic":
+            lines[i] = "210.0, 0.3"
+    with open(out, "w") as f:
+        f.write("\n".join(lines))
+    return out
+
+
+def check_plane(name, out, work, summary, failures):
+    """The checks of a 2D mesh: the periodic ones solved by ccx (four plane-strain
+    steps each) as a composite and as one material; the walled one as written."""
+    if summary["boundary"] != "periodic":
+        check_walled(out, summary, failures, plane=True)
+        return
+    check_periodic(out, summary, failures)
+    phi = check_cells(out, summary, failures)
+    deck = os.path.join(out, "mesh.inp")
+    failures += check_plane_homogeneous(
+        one_material(deck, os.path.join(out, "one_material.inp")), work)
+    failures += check_plane_composite(deck, work, f2=phi, isotropy_tol=None)
+
 
 def check_periodic(out, summary, failures):
     mesh = meshio.read(os.path.join(out, "mesh.msh"))
     origin = np.array(summary["mesh"]["origin"])
-    size = np.array(summary["box"])
+    axes = len(origin)  # 2 for a 2D scene's rectangle
+    size = np.array(summary["box"][:axes])
     length = size.max()
-    p = mesh.points
+    p = mesh.points[:, :axes]
     worst = 0.0
-    for d in range(3):
+    for d in range(axes):
         near = np.flatnonzero(np.abs(p[:, d] - origin[d]) < ON_FACE_TOL * length)
         far = np.flatnonzero(np.abs(p[:, d] - origin[d] - size[d]) < ON_FACE_TOL * length)
         if len(near) == 0 or len(near) != len(far):
             failures.append(f"{out}: {len(near)} nodes on the near {'xyz'[d]} face, "
                             f"{len(far)} on the far one")
             continue
-        shift = np.zeros(3)
+        shift = np.zeros(axes)
         shift[d] = size[d]
         dist, _ = cKDTree(p[near]).query(p[far] - shift)
         back, _ = cKDTree(p[far]).query(p[near] + shift)
@@ -122,20 +192,29 @@ def check_conforming(out, summary, failures):
 
 
 def check_cells(out, summary, failures):
-    """Volumes, cell data, and a grain split at a corner; returns the grain fraction."""
+    """Volumes (areas in 2D), cell data, and a grain split at a corner; returns the
+    grains' fraction of the mesh. Triangles must be counter-clockwise (CalculiX)."""
     mesh = meshio.read(os.path.join(out, "mesh.vtu"))
-    tets = mesh.cells_dict["tetra"]
-    grain = mesh.cell_data_dict["grain"]["tetra"]
-    phase = mesh.cell_data_dict["phase"]["tetra"]
+    origin = np.array(summary["mesh"]["origin"])
+    axes = len(origin)
+    kind = {(3, 1): "tetra", (2, 1): "triangle", (2, 2): "triangle6"}[
+        (axes, summary["mesh"]["order"])]
+    tets = mesh.cells_dict[kind]
+    grain = mesh.cell_data_dict["grain"][kind]
+    phase = mesh.cell_data_dict["phase"][kind]
     p = mesh.points
-    a, b, c = (p[tets[:, i]] - p[tets[:, 0]] for i in (1, 2, 3))
-    vol = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
-    size = np.array(summary["box"])
+    if axes == 3:
+        a, b, c = (p[tets[:, i]] - p[tets[:, 0]] for i in (1, 2, 3))
+        vol = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+    else:
+        a, b = (p[tets[:, i]] - p[tets[:, 0]] for i in (1, 2))
+        vol = 0.5 * (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
+    size = np.array(summary["box"][:axes])
     box = size.prod()
     if vol.min() <= 0.0:
-        failures.append(f"{out}: {np.sum(vol <= 0)} tetrahedra with volume <= 0")
+        failures.append(f"{out}: {np.sum(vol <= 0)} {kind} cells with volume <= 0")
     total = vol.sum()
-    print(f"{out}: {len(tets)} tetrahedra, volume {total!r} of a box of {box!r}")
+    print(f"{out}: {len(tets)} {kind} cells, volume {total!r} of a box of {box!r}")
     if abs(total / box - 1.0) > VOLUME_TOL:
         failures.append(f"{out}: tetrahedra sum to {total}, the box is {box}")
     reported = {v["phase"]: v["mesh"] for v in summary["mesh"]["phase_volume_fractions"]}
@@ -143,24 +222,24 @@ def check_cells(out, summary, failures):
         mine = vol[phase == ph].sum() / box
         if abs(mine - frac) > VOLUME_TOL:
             failures.append(f"{out}: phase {ph} fills {mine} of the mesh, summary says {frac}")
-    origin = np.array(summary["mesh"]["origin"])
     length = size.max()
     corner = []
     for g in np.unique(grain[grain >= 0]):
         nodes = p[np.unique(tets[grain == g])]
         faces = [np.any(np.abs(nodes[:, d] - origin[d] - s * size[d]) < ON_FACE_TOL * length)
-                 for d in range(3) for s in (0, 1)]
+                 for d in range(axes) for s in (0, 1)]
         if all(faces):
             corner.append(int(g))
-    print(f"{out}: grains split across all six faces (a corner): {corner}")
+    print(f"{out}: grains split across all {2 * axes} faces (a corner): {corner}")
     if not corner:
         failures.append(f"{out}: no grain crosses a corner of the box")
     return vol[grain >= 0].sum() / box
 
 
-def check_walled(out, summary, failures):
+def check_walled(out, summary, failures, plane=False):
     """The deck as written, run by ccx: its template stretches the box by STRAIN along
-    x on rollers, so a homogeneous box carries E * STRAIN * Ly * Lz."""
+    x on rollers, so a homogeneous box carries E * STRAIN * Ly * Lz; in 2D (plane
+    strain, sections of thickness 1) a rectangle carries E / (1 - nu^2) * STRAIN * Ly."""
     run = subprocess.run(["ccx", "-i", "mesh"], cwd=out, capture_output=True, text=True)
     if run.returncode != 0 or "ERROR" in run.stdout:
         failures.append(f"{out}: ccx -i mesh failed:\n{run.stdout[-1500:]}")
@@ -170,7 +249,7 @@ def check_walled(out, summary, failures):
     i = next(i for i, w in enumerate(lines) if w[:2] == ["total", "force"])
     force = float(lines[i + 1][0])
     size = summary["box"]
-    want = 210.0 * STRAIN * size[1] * size[2]
+    want = 210.0 / (1.0 - 0.3**2) * STRAIN * size[1] if plane else 210.0 * STRAIN * size[1] * size[2]
     print(f"{out}: ccx -i mesh as written: force {force!r} on X1 ({want!r})")
     if abs(force / want - 1.0) > HOMOGENEOUS_TOL:
         failures.append(f"{out}: force {force} on X1, not {want}")
@@ -192,12 +271,16 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--pack", default="target/release/pack")
     parser.add_argument("--work", default=None)
+    parser.add_argument("--only", default="", help="run only the scenes whose name starts "
+                        "so (plane: the 2D ones)")
     args = parser.parse_args()
     pack = os.path.abspath(args.pack)
     work = args.work or tempfile.mkdtemp(prefix="check_mesh_")
     os.makedirs(work, exist_ok=True)
     failures = []
     for name, values in SCENES.items():
+        if not name.startswith(args.only):
+            continue
         started = time.time()
         with open(os.path.join(work, name + ".toml"), "w") as f:
             f.write(SCENE.format(name=name, **values))
@@ -233,6 +316,23 @@ def main():
                     failures.append(f"composite E along {'xyz'[d]} = {e} outside the HS "
                                     f"bounds [{lower}, {upper}]")
         print(f"{name}: 3 solves in {time.time() - started:.1f} s")
+    for name, values in PLANE_SCENES.items():
+        if not name.startswith(args.only):
+            continue
+        started = time.time()
+        with open(os.path.join(work, name + ".toml"), "w") as f:
+            f.write(PLANE_SCENE.format(name=name, **values))
+        subprocess.run([pack, name + ".toml", "--quiet"], cwd=work, check=True)
+        out = os.path.join(work, name)
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+        m = summary["mesh"]
+        print(f"{name}: {summary['grains']} ellipses, {m['elements']} elements (order "
+              f"{m['order']}), min SICN {m['min_sicn']:.3f}, 1st percentile "
+              f"{m['p1_sicn']:.3f}, packed and meshed in {time.time() - started:.1f} s")
+        check_conforming(out, summary, failures)
+        check_plane(name, out, work, summary, failures)
+        print(f"{name}: checked in {time.time() - started:.1f} s")
     if failures:
         print("FAILED:\n  " + "\n  ".join(failures))
         return 1

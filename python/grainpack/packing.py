@@ -149,7 +149,8 @@ class Packing:
 
         Writes ``mesh.msh``, ``mesh.inp`` and ``mesh.vtu`` into ``dir`` (created if
         missing), all or none. ``size`` is the largest element edge over the smallest
-        grain's equivalent diameter, ``order`` 1 (C3D4) or 2 (C3D10). Returns a dict:
+        grain's equivalent diameter, ``order`` 1 (C3D4) or 2 (C3D10); a 2D packing is
+        meshed as plane-strain triangles, CPE3 or CPE6. Returns a dict:
         ``files`` (the paths), ``summary`` (what ``summary.json``'s ``mesh`` holds) and
         ``grid`` (``mesh.vtu`` as a ``pyvista.UnstructuredGrid`` when pyvista is
         installed, else None). Raises ``ValueError`` for bad arguments or a packing

@@ -163,7 +163,7 @@ impl PyPacking {
         }
         if !(1..=2).contains(&order) {
             return Err(PyValueError::new_err(format!(
-                "order = {order}: must be 1 (C3D4) or 2 (C3D10)"
+                "order = {order}: must be 1 (C3D4, CPE3 in 2D) or 2 (C3D10, CPE6 in 2D)"
             )));
         }
         let gap = self.scene.packing.gap;

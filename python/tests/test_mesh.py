@@ -54,3 +54,38 @@ def test_the_mesh_holds_every_grain_and_fills_the_box(tmp_path):
     assert set(np.unique(grid.cell_data["grain"])) == set(p.ids.tolist()) | {-1}
     volume = grid.compute_cell_sizes(length=False, area=False)["Volume"].sum()
     assert abs(volume / 1000.0 - 1.0) < 1e-9
+
+
+PLANE_SCENE = """
+seed = 5
+target_fraction = 0.5
+[box]
+size = [10.0, 8.0]
+[packing]
+gap = 0.05
+[[phase]]
+size = { distribution = "uniform", min = 1.8, max = 2.8 }
+aspect_ratio = { distribution = "uniform", min = 1.0, max = 1.8 }
+elastic = { E = 100.0, nu = 0.3 }
+"""
+
+
+def test_a_2d_packing_is_meshed_as_plane_strain_triangles(tmp_path):
+    pytest.importorskip("gmsh")
+    p = gp.pack(gp.Scene.from_toml(PLANE_SCENE), progress=False)
+    out = p.mesh(tmp_path / "m", size=0.3, order=2)
+    summary = out["summary"]
+    assert summary["order"] == 2 and summary["min_sicn"] > 0
+    assert len(summary["origin"]) == 2
+    with open(out["files"][1]) as f:
+        deck = f.read()
+    assert "*Element, type=CPE6" in deck and "*Nset, nset=RPY" in deck
+    assert "*Nset, nset=RPZ" not in deck
+    grid = out["grid"]
+    if grid is None:
+        return
+    assert grid.n_cells == summary["elements"]
+    assert set(np.unique(grid.cell_data["grain"])) == set(p.ids.tolist()) | {-1}
+    # The triangles fill the rectangle (curved or not: their edges are shared).
+    area = grid.compute_cell_sizes(length=False, area=True, volume=False)["Area"].sum()
+    assert abs(area / 80.0 - 1.0) < 1e-9

@@ -191,7 +191,7 @@ pub fn write_abaqus_deck(out: &mut dyn Write, scene: &Scene, grid: &VoxelGrid) -
         write_section(out, grid, &name)?;
     }
     if plane {
-        write_plane_step(out, grid)
+        write_plane_step(out, [size[0], size[1]], grid.periodic)
     } else {
         write_solid_step(out, grid)
     }
@@ -239,22 +239,24 @@ fn write_solid_step(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
     writeln!(out, "*End Step")
 }
 
-/// The 2D step template: the normal strain along x imposed, the normal stress along y
-/// free (zero), the shear held at zero; plane strain (zero strain along z) by the
-/// elements. The normal stress along x over the strain is the plane-strain modulus
-/// `E/(1 − ν²)` of a homogeneous RVE.
-fn write_plane_step(out: &mut dyn Write, grid: &VoxelGrid) -> io::Result<()> {
-    let size = grid.size;
+/// The 2D step template of a `size[0]` × `size[1]` rectangle: the normal strain along
+/// x imposed, the normal stress along y free (zero), the shear held at zero; plane
+/// strain (zero strain along z) by the elements. The normal stress along x over the
+/// strain is the plane-strain modulus `E/(1 − ν²)` of a homogeneous RVE. Node 1, the
+/// rectangle's origin corner in `rve.inp` and in the conforming mesh's `mesh.inp`, is
+/// fixed; a periodic deck needs the reference nodes `RPX`, `RPY` and the node sets `RP`
+/// and `X1`, a walled one `X0`, `Y0` and `X1`.
+pub fn write_plane_step(out: &mut dyn Write, size: [f64; 2], periodic: bool) -> io::Result<()> {
     writeln!(
         out,
         "{STEP_MARKER}: uniaxial stress along x, strain {TEMPLATE_STRAIN:e}, plane strain"
     )?;
     writeln!(out, "*Boundary")?;
-    writeln!(out, "{}, 1, 2, 0.0", node(grid, 0, 0, 0))?;
+    writeln!(out, "1, 1, 2, 0.0")?;
     writeln!(out, "*Step")?;
     writeln!(out, "*Static")?;
     writeln!(out, "*Boundary")?;
-    if grid.periodic {
+    if periodic {
         writeln!(out, "RPX, 1, 1, {:?}", TEMPLATE_STRAIN * size[0])?;
         writeln!(out, "RPX, 2, 2, 0.0\nRPY, 1, 1, 0.0")?;
         writeln!(out, "*Node Print, nset=RP\nU")?;

@@ -13,8 +13,8 @@ mod damask;
 mod names;
 
 pub use abaqus::{
-    write_abaqus_deck, write_umat_sections, PLANE_THICKNESS, RVE_INP, RVE_UMAT_INP, STEP_MARKER,
-    TEMPLATE_STRAIN,
+    write_abaqus_deck, write_plane_step, write_umat_sections, PLANE_THICKNESS, RVE_INP,
+    RVE_UMAT_INP, STEP_MARKER, TEMPLATE_STRAIN,
 };
 pub use damask::{
     write_load_yaml, write_material_yaml, LOAD_YAML, MATERIAL_YAML, PLACEHOLDER_ELASTIC,

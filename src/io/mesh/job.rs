@@ -1,8 +1,15 @@
 //! The job handed to `gmsh_mesh.py`: everything it needs, as JSON.
+//!
+//! A 2D scene's job (`dimension` 2) has the rectangle's two lengths as `box` and the
+//! plane-strain step template of `rve.inp` as `plane_step` (written here by
+//! `crate::io::decks`, so that both decks have the same step); its grains are the
+//! ellipsoids the ellipses are packed as (docs/design-2d.md), of which the mesher uses
+//! the first two semi-axes and the turn about z.
 
 use crate::contact::equivalent_diameter;
+use crate::contact::Dimension;
 use crate::io::decks::{
-    matrix_name, section_name, PLACEHOLDER_ELASTIC, STEP_MARKER, TEMPLATE_STRAIN,
+    matrix_name, section_name, write_plane_step, PLACEHOLDER_ELASTIC, STEP_MARKER, TEMPLATE_STRAIN,
 };
 use crate::packing::PackedGrain;
 use crate::scene::Elastic;
@@ -13,8 +20,11 @@ use std::path::{Path, PathBuf};
 /// The mesher's input (read by `gmsh_mesh.py`'s `main`).
 #[derive(Debug, Serialize)]
 pub struct MeshJob<'a> {
+    /// 3, or 2 for a 2D scene (a triangle mesh of the rectangle).
+    dimension: u8,
+    /// The box's edges: three, or the rectangle's two in 2D.
     #[serde(rename = "box")]
-    box_size: [f64; 3],
+    box_size: Vec<f64>,
     periodic: bool,
     grains: Vec<JobGrain>,
     element_size: f64,
@@ -27,6 +37,9 @@ pub struct MeshJob<'a> {
     materials: Vec<JobMaterial>,
     strain: f64,
     step_marker: &'static str,
+    /// 2D only: the step template of the plane-strain deck, from its marker line on.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    plane_step: Option<String>,
     files: JobFiles,
     stats: &'a Path,
 }
@@ -98,9 +111,18 @@ pub fn mesh_job<'a>(
         poisson: m.poisson,
     });
     let [msh, inp, vtu] = files;
+    let periodic = scene.domain.boundary == Boundary::Periodic;
+    let plane = scene.domain.dimension == Dimension::Two;
+    let plane_step = plane.then(|| {
+        let mut step = Vec::new();
+        let [lx, ly, _] = scene.domain.size;
+        write_plane_step(&mut step, [lx, ly], periodic).expect("writes to a Vec");
+        String::from_utf8(step).expect("the step is UTF-8")
+    });
     MeshJob {
-        box_size: scene.domain.size,
-        periodic: scene.domain.boundary == Boundary::Periodic,
+        dimension: if plane { 2 } else { 3 },
+        box_size: scene.domain.sides().to_vec(),
+        periodic,
         grains: grains
             .iter()
             .map(|g| JobGrain {
@@ -120,6 +142,7 @@ pub fn mesh_job<'a>(
         materials,
         strain: TEMPLATE_STRAIN,
         step_marker: STEP_MARKER,
+        plane_step,
         files: JobFiles { msh, inp, vtu },
         stats,
     }

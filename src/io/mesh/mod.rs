@@ -1,5 +1,6 @@
 //! The conforming mesh (`[output] mesh = true`): the packed grains and the matrix
-//! between them as body-fitted tetrahedra, periodic in a periodic box, made by gmsh.
+//! between them as body-fitted tetrahedra (triangles of the rectangle in 2D, for a
+//! plane-strain deck), periodic in a periodic box, made by gmsh.
 //!
 //! grainpack drives gmsh through its Python API: `gmsh_mesh.py`, embedded in this
 //! library, runs in a Python with the `gmsh` package (`pip install gmsh==4.15.2`):
@@ -29,7 +30,7 @@ use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 /// File name of the gmsh mesh (format 4.1).
 pub const MESH_MSH: &str = "mesh.msh";
@@ -50,8 +51,20 @@ pub const GMSH_INSTALL_HINT: &str = "install gmsh's Python package into the pyth
 /// stderr); `EXIT_MESH_FAILED` in `gmsh_mesh.py`.
 const SCRIPT_MESH_FAILED: i32 = 3;
 
-/// The mesher, embedded so that `pack` needs no file beside it.
-const SCRIPT: &str = include_str!("gmsh_mesh.py");
+/// The mesher's Python modules (name, source), embedded so that `pack` needs no file
+/// beside it; `LOADER` makes them importable and runs `gmsh_mesh.main()`.
+const MODULES: [(&str, &str); 7] = [
+    ("gmsh_mesh", include_str!("gmsh_mesh.py")),
+    ("mesh_common", include_str!("mesh_common.py")),
+    ("mesh_geometry", include_str!("mesh_geometry.py")),
+    ("mesh_nodes", include_str!("mesh_nodes.py")),
+    ("mesh_write", include_str!("mesh_write.py")),
+    ("mesh_plane", include_str!("mesh_plane.py")),
+    ("mesh_plane_write", include_str!("mesh_plane_write.py")),
+];
+
+/// Run as `python -c LOADER job.json`, with [`MODULES`] as a JSON object on stdin.
+const LOADER: &str = include_str!("loader.py");
 
 /// Why the mesh could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -85,11 +98,11 @@ pub enum MeshError {
 /// What the mesher measured, as `summary.json` reports it (`mesh`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MeshStats {
-    /// Tetrahedra.
+    /// Elements: tetrahedra, triangles in 2D.
     pub elements: usize,
     /// Nodes (the reference nodes not counted).
     pub nodes: usize,
-    /// Element order (1: C3D4, 2: C3D10).
+    /// Element order (1: C3D4, 2: C3D10; in 2D 1: CPE3, 2: CPE6).
     pub order: u8,
     /// Largest element edge asked of gmsh, in the scene's length unit.
     pub element_size: f64,
@@ -105,20 +118,22 @@ pub struct MeshStats {
     /// Whether the first attempt failed on a periodic curve and the retry with sizes
     /// from curvature was needed.
     pub retried_with_curvature: bool,
-    /// Lower corner of the meshed window of the periodic packing.
-    pub origin: [f64; 3],
+    /// Lower corner of the meshed window of the periodic packing (two coordinates in
+    /// 2D, where the mesh lies in the plane z = 0).
+    pub origin: Vec<f64>,
     /// Per axis, the least distance from a box face to a grain's tangent plane
-    /// (periodic box only).
-    pub face_margin: Option<[f64; 3]>,
-    /// Pairs of opposite face pieces made periodic.
+    /// (periodic box only; two axes in 2D).
+    pub face_margin: Option<Vec<f64>>,
+    /// Pairs of opposite face pieces made periodic (in 2D, pieces of the edges).
     pub periodic_face_pairs: usize,
     /// Nodes tied to an image by periodic equations.
     pub periodic_nodes: usize,
     /// Largest distance a periodic node moved when snapped onto its master plus the
     /// box length.
     pub largest_snap: f64,
-    /// Per phase (the matrix last), the volume fraction of the mesh's elements against
-    /// the packing's exact one: they differ by the chordal error of the elements.
+    /// Per phase (the matrix last), the volume fraction (area fraction in 2D) of the
+    /// mesh's elements against the packing's exact one: they differ by the chordal
+    /// error of the elements.
     pub phase_volume_fractions: Vec<PhaseVolume>,
     /// gmsh's version.
     pub gmsh: String,
@@ -129,9 +144,10 @@ pub struct MeshStats {
 pub struct PhaseVolume {
     /// Phase index (the number of phases for the matrix).
     pub phase: usize,
-    /// Σ element volumes / box volume (straight-sided elements).
+    /// Σ element volumes / box volume (straight-sided elements; areas in 2D).
     pub mesh: f64,
-    /// Σ (4π/3) a1 a2 a3 / box volume (the matrix: the rest).
+    /// Σ (4π/3) a1 a2 a3 / box volume (in 2D Σ π a1 a2 / rectangle area; the matrix:
+    /// the rest).
     pub exact: f64,
 }
 
@@ -187,15 +203,10 @@ pub fn write_mesh(
     let result = (|| {
         let text = serde_json::to_vec(&job).map_err(|e| io(std::io::Error::other(e)))?;
         fs::write(&job_path, text).map_err(io)?;
-        let out = Command::new(python)
-            .arg("-c")
-            .arg(SCRIPT)
-            .arg(&job_path)
-            .output()
-            .map_err(|e| MeshError::GmshMissing {
-                python: python.to_owned(),
-                detail: e.to_string(),
-            })?;
+        let out = run_script(python, &job_path).map_err(|e| MeshError::GmshMissing {
+            python: python.to_owned(),
+            detail: e.to_string(),
+        })?;
         if !out.status.success() {
             let err = String::from_utf8_lossy(&out.stderr).trim().to_owned();
             return Err(match out.status.code() {
@@ -214,4 +225,27 @@ pub fn write_mesh(
     })();
     cleanup();
     result
+}
+
+/// Runs the mesher on the job at `job` in `python`: [`LOADER`] on the command line,
+/// [`MODULES`] on its stdin (which the loader reads whole before anything else).
+fn run_script(python: &str, job: &Path) -> std::io::Result<std::process::Output> {
+    let sources: serde_json::Map<String, serde_json::Value> = MODULES
+        .iter()
+        .map(|&(name, source)| (name.to_owned(), source.into()))
+        .collect();
+    let mut child = Command::new(python)
+        .arg("-c")
+        .arg(LOADER)
+        .arg(job)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    let mut stdin = child.stdin.take().expect("stdin is piped");
+    let written = serde_json::to_writer(&mut stdin, &sources).map_err(std::io::Error::other);
+    // Closed before waiting, so the loader sees the end of its input.
+    drop(stdin);
+    let out = child.wait_with_output()?;
+    written.map(|()| out)
 }

@@ -59,14 +59,6 @@ pub(super) fn output(
 /// `[packing]` (`validate::gap::meshable`).
 fn mesh(src: &Source, raw: &RawOutput, plane: bool) -> Result<Option<MeshSpec>, SceneError> {
     let on = raw.mesh.as_ref().is_some_and(|v| *v.get_ref());
-    if let Some(v) = raw.mesh.as_ref().filter(|_| on && plane) {
-        return Err(src.invalid_at(
-            "output.mesh",
-            v,
-            "the conforming mesh is 3D only for now; a 2D scene's plane-strain deck is the \
-             pixel one (rve = true, abaqus = true)",
-        ));
-    }
     if !on {
         if let Some(v) = &raw.mesh_size {
             return Err(src.invalid_at("output.mesh_size", v, "applies only with mesh = true"));
@@ -100,7 +92,11 @@ fn mesh(src: &Source, raw: &RawOutput, plane: bool) -> Result<Option<MeshSpec>, 
                 return Err(src.invalid_at(
                     "output.mesh_order",
                     v,
-                    "must be 1 (linear tetrahedra, C3D4) or 2 (quadratic, C3D10)",
+                    if plane {
+                        "must be 1 (linear triangles, CPE3) or 2 (quadratic, CPE6)"
+                    } else {
+                        "must be 1 (linear tetrahedra, C3D4) or 2 (quadratic, C3D10)"
+                    },
                 ))
             }
         };
