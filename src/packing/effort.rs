@@ -124,5 +124,8 @@ pub(super) const QUENCH_LIMIT: f64 = 1.0 + RECOMPRESSION;
 /// the fastest answer, a little less dense just above the jamming point. 10 000
 /// lognormal spheres (σ 0.25) at full size 0.66, `effort = 0.1`, one thread: 1 020 FIRE
 /// steps to 0.6488 instead of 2 048 to 0.6563; equal spheres 894 to 0.6327 instead of
-/// 1 141 to 0.6362 (BENCHMARKS.md, "Issue 27, third round").
+/// 1 141 to 0.6362 (BENCHMARKS.md, "Issue 27, third round"). The price: a target
+/// just below the jamming point may be missed (frozen spheroids of aspect 1.5 asked
+/// 0.62: 0.6168 in 1 262 steps, where the compression before the search reached 0.62
+/// in 2 400).
 pub(super) const QUENCH_MIN_EFFORT: f64 = 0.5;
