@@ -70,13 +70,14 @@ pub fn packing_png_size(sides: [f64; 2]) -> (u32, u32, f64) {
 
 /// Draws the packing of `grains` (ellipses of a 2D scene in `domain`, their phase
 /// indices into `phases`) and writes it as PNG to `out`: x to the right, y up, the box
-/// [`PACKING_PNG_LONG_SIDE`] pixels along its longer edge, a legend of the phases'
-/// colours above it.
+/// [`PACKING_PNG_LONG_SIDE`] pixels along its longer edge, a title with its size in
+/// `unit` and a legend of the phases' colours above it.
 pub fn render_packing_png(
     out: &mut dyn Write,
     phases: &[Phase],
     grains: &[PackedGrain],
     domain: &Domain,
+    unit: &str,
 ) -> Result<(), PlotError> {
     if let Some(g) = grains.iter().find(|g| g.phase >= phases.len()) {
         return Err(PlotError::GrainPhase {
@@ -141,7 +142,7 @@ pub fn render_packing_png(
         inner
             .draw(&Rectangle::new([(0, 0), (w, h)], BLACK.stroke_width(2)))
             .map_err(failed("the box"))?;
-        draw_legend(&title, phases, grains, domain)?;
+        draw_legend(&title, phases, grains, domain, unit)?;
         root.present().map_err(failed("the picture"))?;
     }
     encode_rgb(out, (width, height), &rgb)
@@ -164,12 +165,13 @@ fn ellipse_points(grain: &PackedGrain, shift: [f64; 3]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// The title (grains, box, area fraction) and one coloured square per phase.
+/// The title (grains, box in `unit`, area fraction) and one coloured square per phase.
 fn draw_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     phases: &[Phase],
     grains: &[PackedGrain],
     domain: &Domain,
+    unit: &str,
 ) -> Result<(), PlotError> {
     let area_of = |g: &PackedGrain| domain.dimension.measure(g.semi_axes);
     let fraction = grains.iter().map(area_of).sum::<f64>() / domain.volume();
@@ -181,7 +183,7 @@ fn draw_legend<DB: DrawingBackend>(
     };
     area.draw_text(
         &format!(
-            "{} grains in a {} \u{d7} {} box, area fraction {:.4}",
+            "{} grains in a {} \u{d7} {} {unit} box, area fraction {:.4}",
             grains.len(),
             domain.size[0],
             domain.size[1],

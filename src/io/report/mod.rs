@@ -223,7 +223,14 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
     }
     if output.packing_png && domain.dimension == Dimension::Two {
         files.write(PACKING_PNG, |w| {
-            render_packing_png(w, &scene.phases, grains, domain).map_err(io::Error::other)
+            render_packing_png(
+                w,
+                &scene.phases,
+                grains,
+                domain,
+                scene.units.length.symbol(),
+            )
+            .map_err(io::Error::other)
         })?;
     }
     // Where it helps: a texture was asked for, or orientations go to a solver.
