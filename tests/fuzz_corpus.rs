@@ -87,6 +87,52 @@ fn generated_scenes_include_valid_and_refused_2d_ones() {
     );
 }
 
+/// Every mesh edit of the generator (`fuzz/src/checks/mesh.rs`: a meshable scene, then
+/// one of `mesh`, `mesh_size`, `mesh_order`, `packing.gap` or the materials set to each
+/// of its limit values or removed) through `check_scene`, which holds a valid scene's
+/// mesh to its documented limits and a refusal to the line of the key it names (the
+/// mesh is never made: gmsh is not run). Each key's values give valid scenes and
+/// refusals naming that key.
+#[test]
+fn every_mesh_edit_validates_within_the_limits_or_is_refused_naming_its_key() {
+    let mut outcomes = std::collections::BTreeMap::new();
+    for (i, &(table, key, values)) in checks::MESH_EDITS.iter().enumerate() {
+        for (j, value) in values.iter().enumerate() {
+            // Edit 9 (the mesh edit), then which key, which value, phase 0.
+            let bytes = [9, i as u8, j as u8, 0];
+            let text = checks::scene_from_choices(&mut checks::Choices::new(&bytes));
+            assert!(text.contains("mesh = true") || key == "mesh", "{text}");
+            let path = match table {
+                "phase.elastic" => format!("phase[0].elastic.{key}"),
+                t => format!("{t}.{key}"),
+            };
+            let named = match checks::check_scene(&text, checks::SCENE_NAME) {
+                Some(scene) => scene.output.mesh.is_some(),
+                None => {
+                    let e = grainpack::scene::Scene::from_str(&text, checks::SCENE_NAME);
+                    let message = e.expect_err("refused above").to_string();
+                    // Without a mesh (`mesh = false`), `[matrix]` is what is refused.
+                    let matrix = *value == "false" && message.contains(": matrix = ");
+                    assert!(
+                        value.is_empty() || matrix || message.contains(&format!(": {path}")),
+                        "{key} = {value}: {message}"
+                    );
+                    false
+                }
+            };
+            let (valid, refused) = outcomes.entry(path).or_insert((0, 0));
+            *if named { valid } else { refused } += 1;
+        }
+    }
+    for (path, (valid, refused)) in &outcomes {
+        assert!(
+            *valid > 0 && *refused > 0,
+            "{path}: {valid} valid, {refused} refused"
+        );
+    }
+    assert_eq!(outcomes.len(), checks::MESH_EDITS.len(), "{outcomes:?}");
+}
+
 #[test]
 fn contact_bit_patterns_of_ellipses_in_the_corpus_name_2d_entries_and_answer_as_embedded() {
     replay("contact_bits_2d", checks::contact_bits_2d);
