@@ -85,7 +85,8 @@ const MESH_KEYS: [&str; 3] = ["mesh", "mesh_size", "mesh_order"];
 /// 2, elastic constants on every phase and on the matrix, and is 3D; a refusal whose
 /// line is a mesh key's (`mesh_size = …` under `[output]`) names that key
 /// (`output.mesh_size`), and a refusal naming a mesh key or `packing.gap` because of
-/// the mesh points at a line that holds it (or, for a missing gap, at `mesh`'s).
+/// the mesh points at a line that holds it (what the mesh needs and is missing, such
+/// as the gap or a phase's material, is refused at `mesh`'s line).
 pub fn check_mesh(result: &Result<Scene, SceneError>, text: &str) {
     match result {
         Ok(scene) => {
@@ -115,9 +116,10 @@ pub fn check_mesh(result: &Result<Scene, SceneError>, text: &str) {
             let held = text.lines().nth(line - 1).unwrap_or("");
             let lhs = held.split('=').next().unwrap_or("").trim();
             let table = table_of(text, *line);
-            // A missing gap is refused at `mesh = true`, naming `packing.gap`.
-            let missing_gap = key == "packing.gap" && value == "(missing)" && lhs == "mesh";
-            if table == "output" && MESH_KEYS.contains(&lhs) && !missing_gap {
+            // What the mesh needs and is missing (`packing.gap`, `[phase.elastic]`,
+            // `[matrix.elastic]`) is refused at `mesh = true`, naming what is missing.
+            let missing = value == "(missing)" && lhs == "mesh";
+            if table == "output" && MESH_KEYS.contains(&lhs) && !missing {
                 assert_eq!(
                     key,
                     &format!("output.{lhs}"),
