@@ -41,10 +41,10 @@ fn lambda_is_one_not_one_half_when_the_second_form_is_beyond_double_range_smalle
 }
 
 /// fuzz target contact_bits: a form with subnormal entries answered a μ² that depended
-/// on the order of the pair. A disc whose thickness is a subnormal entry (2e-314 against
-/// 8.6e9, one bit once normalised) and a tiny definite form: 7.2e-18 in one order,
-/// 2.9e-11 in the other (mpmath, 1200 digits: 2.9103830456733697151e-11, λ* = 1 −
-/// 2e-160). The entries the rank decision declared negligible still reached the
+/// on the order of the pair. A flat disc whose second axis is a subnormal entry (2e-314
+/// against 8.6e9, one bit once normalised) and a tiny definite form: 7.2e-18 in one order,
+/// 2.9e-11 in the other (`tools/contact_exact.py`: 2.9103830456733697e-11, λ* = 1 and
+/// 2e-160 by order). The entries the rank decision declared negligible still reached the
 /// coefficients that do not vanish with the rank, and decided which end F tends to;
 /// `exact::singular_form` now drops them (`UNRESOLVED`). The second pair, a point
 /// against a flat disc whose null directions are 1e-317 and 8e-320 instead of 0,
@@ -96,8 +96,8 @@ fn swapping_a_point_and_a_disc_with_subnormal_entries_keeps_mu2() {
 /// eigenvalue 1.25e-221, below the rank decision's threshold) and a needle of the same
 /// 1e-110 size answered the right μ² in both orders, but λ = 0 in both: the disc's
 /// thickness, kept in one coefficient while the determinant was set to 0, made F's
-/// limit at λ = 0 look like its maximum. mpmath (1200 digits): μ² =
-/// 46.730048202413789709, λ* = 1 − 1e-918.
+/// limit at λ = 0 look like its maximum. `tools/contact_exact.py`: μ² =
+/// 46.73004820241379, λ* = 1 and 0 by order.
 #[test]
 fn lambda_is_at_the_needle_end_for_a_disc_thinner_than_its_rank_threshold() {
     let r = [
