@@ -145,3 +145,37 @@ fn a_hundred_thousand_threads_is_a_typed_error_not_a_pool() {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("threads = 100000"), "{stderr}");
 }
+
+/// fuzz target measured_table: a measured grain of diameter 1.2e141 (1e150, 3e203 in
+/// 2D), `mode = "exact"`, `target_fraction = 0.2`: the grains' volume overflowed, the
+/// box scaled to it was infinite, the scene validated, and packing it failed
+/// (`RunError::Pack`). Now an error naming `target_fraction`, in 3D and in 2D; a table
+/// of 1e100 still validates (volume 5e299).
+#[test]
+fn measured_grains_beyond_the_double_range_are_refused_not_given_an_infinite_box() {
+    use grainpack::scene::Scene;
+    let dir = std::env::temp_dir().join(format!("grainpack-huge-grain-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let name = dir.join("scene.toml").display().to_string();
+    for (box_size, d, refused) in [
+        ("[40.0, 40.0, 40.0]", "1.2e141", true),
+        ("[40.0, 40.0]", "3.3e203", true),
+        ("[40.0, 40.0, 40.0]", "1e100", false),
+    ] {
+        std::fs::write(dir.join("grains.csv"), format!("d\n1.0\n{d}\n")).unwrap();
+        let scene = format!(
+            "target_fraction = 0.2\n[box]\nsize = {box_size}\n[[phase]]\n\
+             measured = {{ file = \"grains.csv\", mode = \"exact\" }}\n"
+        );
+        match Scene::from_str(&scene, &name) {
+            Ok(s) if !refused => assert!(s.domain.size.iter().all(|l| l.is_finite()), "{s:?}"),
+            Err(e) if refused => {
+                let message = e.to_string();
+                assert!(message.contains(": target_fraction = 0.2: "), "{message}");
+                assert!(message.contains("beyond the range"), "{message}");
+            }
+            other => panic!("d = {d}: {other:?}"),
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
