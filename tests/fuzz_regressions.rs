@@ -40,28 +40,81 @@ fn lambda_is_one_not_one_half_when_the_second_form_is_beyond_double_range_smalle
     }
 }
 
-/// fuzz target contact_bits, open: a point against a flat disc whose null directions
-/// are subnormal (1e-317, 8e-320) rather than zero answers μ² = 0.25 in one order and
-/// 1/576 in the other (with exact zeros, both orders give `CommonNullDirection`). The
-/// robust path's rank decision on subnormal entries is the suspect; not fixed yet.
+/// fuzz target contact_bits: a form with subnormal entries answered a μ² that depended
+/// on the order of the pair. A flat disc whose second axis is a subnormal entry (2e-314
+/// against 8.6e9, one bit once normalised) and a tiny definite form: 7.2e-18 in one order,
+/// 2.9e-11 in the other (`tools/contact_exact.py`: 2.9103830456733697e-11, λ* = 1 and
+/// 2e-160 by order). The entries the rank decision declared negligible still reached the
+/// coefficients that do not vanish with the rank, and decided which end F tends to;
+/// `exact::singular_form` now drops them (`UNRESOLVED`). The second pair, a point
+/// against a flat disc whose null directions are 1e-317 and 8e-320 instead of 0,
+/// answered 0.25 and 1/576.
 #[test]
-#[ignore = "open defect: the robust path on forms with subnormal entries (docs/reliability.md)"]
 fn swapping_a_point_and_a_disc_with_subnormal_entries_keeps_mu2() {
-    let r = [0.5000152587890625, 0.0, 1.0609978955e-314];
-    let q1 = [0.0, 0.0, 0.0, 2.070238e-317, 0.0, 1.2325910294356204e-308];
-    let q2 = [
-        1.0,
-        5.222099017e-315,
-        4.450147717014403e-308,
-        8.079e-320,
-        8.087e-320,
-        3.4332275390625e-5,
+    let pairs = [
+        (
+            [0.5, 0.0, 0.0],
+            [8589934592.000002, 0.0, 0.0, 2.124066029e-314, 0.0, 0.0],
+            [
+                3.4223548124775e-310,
+                0.0,
+                0.0,
+                1.7259532869260418e-307,
+                0.0,
+                3.13151306251402e-294,
+            ],
+            Some(2.910_383_045_673_369_7e-11),
+        ),
+        (
+            [0.5000152587890625, 0.0, 1.0609978955e-314],
+            [0.0, 0.0, 0.0, 2.070238e-317, 0.0, 1.2325910294356204e-308],
+            [
+                1.0,
+                5.222099017e-315,
+                4.450147717014403e-308,
+                8.079e-320,
+                8.087e-320,
+                3.4332275390625e-5,
+            ],
+            None,
+        ),
     ];
-    let a = contact_function(&r, &q1, &q2);
-    let b = contact_function(&r.map(|x| -x), &q2, &q1);
-    match (a, b) {
-        (Ok(a), Ok(b)) => assert_eq!(a.mu2, b.mu2, "{a:?} {b:?}"),
-        (a, b) => assert_eq!(a.is_ok(), b.is_ok(), "{a:?} {b:?}"),
+    for (r, q1, q2, expected) in pairs {
+        for method in [contact_function, contact_function_fast] {
+            let a = method(&r, &q1, &q2).unwrap();
+            let b = method(&r.map(|x| -x), &q2, &q1).unwrap();
+            assert_eq!(a.mu2, b.mu2, "{a:?} {b:?}");
+            assert_eq!(a.lambda, 1.0 - b.lambda, "{a:?} {b:?}");
+            if let Some(mu2) = expected {
+                assert!((a.mu2 - mu2).abs() <= 4.0 * f64::EPSILON * mu2, "{a:?}");
+            }
+        }
+    }
+}
+
+/// fuzz target contact_bits: λ at the wrong end. A disc 1e-110 thick (its form's third
+/// eigenvalue 1.25e-221, below the rank decision's threshold) and a needle of the same
+/// 1e-110 size answered the right μ² in both orders, but λ = 0 in both: the disc's
+/// thickness, kept in one coefficient while the determinant was set to 0, made F's
+/// limit at λ = 0 look like its maximum. `tools/contact_exact.py`: μ² =
+/// 46.73004820241379, λ* = 1 and 0 by order.
+#[test]
+fn lambda_is_at_the_needle_end_for_a_disc_thinner_than_its_rank_threshold() {
+    let r = [
+        0.002588147670030594,
+        0.000683593749999994,
+        3.075052062085698e-304,
+    ];
+    let tiny = 1.2497855238365512e-221;
+    let q1 = [1.0, 0.0, 0.0, 1e-8, 1.2497855238365468e-221, tiny];
+    let q2 = [tiny; 6];
+    for method in [contact_function, contact_function_fast] {
+        let a = method(&r, &q1, &q2).unwrap();
+        let b = method(&r.map(|x| -x), &q2, &q1).unwrap();
+        assert_eq!(a.mu2, b.mu2, "{a:?} {b:?}");
+        let mu2 = 46.730_048_202_413_79;
+        assert!((a.mu2 - mu2).abs() <= 4.0 * f64::EPSILON * mu2, "{a:?}");
+        assert_eq!((a.lambda, b.lambda), (1.0, 0.0), "{a:?} {b:?}");
     }
 }
 
@@ -91,4 +144,38 @@ fn a_hundred_thousand_threads_is_a_typed_error_not_a_pool() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("threads = 100000"), "{stderr}");
+}
+
+/// fuzz target measured_table: a measured grain of diameter 1.2e141 (1e150, 3e203 in
+/// 2D), `mode = "exact"`, `target_fraction = 0.2`: the grains' volume overflowed, the
+/// box scaled to it was infinite, the scene validated, and packing it failed
+/// (`RunError::Pack`). Now an error naming `target_fraction`, in 3D and in 2D; a table
+/// of 1e100 still validates (volume 5e299).
+#[test]
+fn measured_grains_beyond_the_double_range_are_refused_not_given_an_infinite_box() {
+    use grainpack::scene::Scene;
+    let dir = std::env::temp_dir().join(format!("grainpack-huge-grain-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let name = dir.join("scene.toml").display().to_string();
+    for (box_size, d, refused) in [
+        ("[40.0, 40.0, 40.0]", "1.2e141", true),
+        ("[40.0, 40.0]", "3.3e203", true),
+        ("[40.0, 40.0, 40.0]", "1e100", false),
+    ] {
+        std::fs::write(dir.join("grains.csv"), format!("d\n1.0\n{d}\n")).unwrap();
+        let scene = format!(
+            "target_fraction = 0.2\n[box]\nsize = {box_size}\n[[phase]]\n\
+             measured = {{ file = \"grains.csv\", mode = \"exact\" }}\n"
+        );
+        match Scene::from_str(&scene, &name) {
+            Ok(s) if !refused => assert!(s.domain.size.iter().all(|l| l.is_finite()), "{s:?}"),
+            Err(e) if refused => {
+                let message = e.to_string();
+                assert!(message.contains(": target_fraction = 0.2: "), "{message}");
+                assert!(message.contains("beyond the range"), "{message}");
+            }
+            other => panic!("d = {d}: {other:?}"),
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }

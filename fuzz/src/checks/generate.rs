@@ -2,8 +2,12 @@
 //! input bytes, each setting a documented key (`docs/config.md`) to a value at or past
 //! its limits (zero, negative, NaN, huge, empty tables, wrong types), removing one,
 //! adding a phase or a misspelt key, or making the scene 2D (a box of two lengths, so
-//! that the 2D keys and the refusals of 3D-only ones are reached: [`FLAT`]).
+//! that the 2D keys and the refusals of 3D-only ones are reached: [`FLAT`]), or making
+//! it meshable and setting a mesh key (`mesh.rs`).
 //! libFuzzer and proptest drive the same bytes.
+
+use super::mesh::{MESHABLE, MESH_EDITS};
+use super::pools::{NUMBERS, OTHERS, WORDS};
 
 /// The input bytes, read one choice at a time (zeros once they run out).
 pub struct Choices<'a> {
@@ -123,6 +127,9 @@ const TABLES: [(&str, &[&str]); 11] = [
             "packing_png",
             "damask",
             "abaqus",
+            "mesh",
+            "mesh_size",
+            "mesh_order",
         ],
     ),
 ];
@@ -133,90 +140,6 @@ const PASSED: [(&str, &[&str]); 4] = [
     ("matrix.elastic", &["E", "nu"]),
     ("matrix.damask", &["lattice", "type"]),
     ("homogenization", &["name", "N_constituents", "mechanical"]),
-];
-
-/// Numbers at and past every documented limit.
-const NUMBERS: [&str; 40] = [
-    "0",
-    "0.0",
-    "-0.0",
-    "-1",
-    "-1.0",
-    "1",
-    "1.0",
-    "2",
-    "3.0",
-    "0.5",
-    "1.5",
-    "4",
-    "10",
-    "100",
-    "360",
-    "-90",
-    "180.0",
-    "0.7707",
-    "0.7708",
-    "0.1",
-    "1e-3",
-    "1e-9",
-    "1e-300",
-    "5e-324",
-    "-1e-300",
-    "1e4",
-    "1e5",
-    "1e6",
-    "1e7",
-    "10000001",
-    "1e308",
-    "-1e308",
-    "nan",
-    "-nan",
-    "inf",
-    "-inf",
-    "9223372036854775807",
-    "-9223372036854775808",
-    "0.9999999999999999",
-    "1.0000000000000002",
-];
-
-/// Values of every other TOML type, and the documented words.
-const OTHERS: [&str; 36] = [
-    "\"\"",
-    "\"x\"",
-    "\"y\"",
-    "\"z\"",
-    "\"axis\"",
-    "true",
-    "false",
-    "[]",
-    "{}",
-    "[1.0]",
-    "[1.0, 2.0]",
-    "[1.0, 2.0, 3.0]",
-    "[0.0, 0.0, 0.0]",
-    "[-1.0, 1.0, 1.0]",
-    "[nan, 1.0, 1.0]",
-    "[1.0, 0.0, 0.0, 0.0]",
-    "[0.5, 0.5, 0.5, 0.5]",
-    "[0.0, 0.0, 0.0, 0.0]",
-    "[1, 2, 3]",
-    "[1e308, 1e308, 1e308]",
-    "[4, 4, 4]",
-    "[0.1, 1.0, 2.0]",
-    "[0.0, 0.5, 1.0]",
-    "[1.0, 0.5, 0.0]",
-    "\"constant\"",
-    "\"uniform\"",
-    "\"normal\"",
-    "\"lognormal\"",
-    "\"table\"",
-    "\"random\"",
-    "\"fixed\"",
-    "\"aligned\"",
-    "\"tilt\"",
-    "\"fisher\"",
-    "\"fibre\"",
-    "1979-05-27T07:32:00Z",
 ];
 
 /// 2D scenes: the boxes of two lengths an edit sets, each with one of [`FLAT_SETS`].
@@ -256,30 +179,6 @@ const FLAT_SETS: [&[(&str, &str, &str)]; 10] = [
     ],
 ];
 
-/// Words some keys take, besides the pools above.
-const WORDS: [&str; 20] = [
-    "\"periodic\"",
-    "\"reflecting\"",
-    "\"volume\"",
-    "\"number\"",
-    "\"linear\"",
-    "\"log\"",
-    "\"swap\"",
-    "\"none\"",
-    "\"draw\"",
-    "\"exact\"",
-    "\"grains\"",
-    "\"matrix\"",
-    "\"file\"",
-    "\"missing.csv\"",
-    "\"um\"",
-    "\"µm\"",
-    "\"mm\"",
-    "\"MPa\"",
-    "\"GPa\"",
-    "\"Pa\"",
-];
-
 /// One `key = value` line in table `table` (`phase.size` etc. are those of phase
 /// `phase`).
 #[derive(Clone)]
@@ -310,7 +209,7 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
         if choices.exhausted() {
             break;
         }
-        match choices.byte() % 9 {
+        match choices.byte() % 10 {
             0..=3 => {
                 let (table, keys) = choices.pick(&TABLES);
                 let table = match table {
@@ -347,6 +246,22 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
                     // An empty value removes the key.
                     if !value.is_empty() {
                         entries.push(entry(table, phase, key, value));
+                    }
+                }
+            }
+            9 => {
+                // A meshable scene (`mesh.rs`: materials on every phase), then one mesh
+                // key set at or past its limits, or removed (an empty value).
+                let (table, key, values) = choices.pick(&MESH_EDITS);
+                let edit = (table, key, choices.pick(values));
+                let phase = usize::from(choices.byte()) % phases;
+                let base = MESHABLE
+                    .into_iter()
+                    .flat_map(|e| (0..phases).map(move |p| (e, p)));
+                for ((t, k, v), p) in base.chain([(edit, phase)]) {
+                    entries.retain(|e| !(e.table == t && e.key == k && e.phase == p));
+                    if !v.is_empty() {
+                        entries.push(entry(t, p, k, v));
                     }
                 }
             }

@@ -8,11 +8,14 @@
 
 mod contact;
 mod generate;
+mod mesh;
+mod pools;
 mod scene;
 mod tables;
 
 pub use contact::{check_pair, check_pair_2d};
 pub use generate::{scene_from_choices, Choices};
+pub use mesh::MESH_EDITS;
 pub use scene::{check_scene, SCENE_NAME};
 
 /// Raw bytes as a scene file: read, validated, and packed when valid and tiny.

@@ -20,9 +20,12 @@ pub const MAX_PACKED_GRAINS: f64 = 12.0;
 pub const MAX_FIRE_STEPS: u64 = 4000;
 
 /// Validates `text` as the scene file `name`; checks the error's place, or packs the
-/// scene when it is tiny. Returns the scene when valid.
+/// scene when it is tiny, and the mesh keys' validation (`mesh::check_mesh`). Returns
+/// the scene when valid.
 pub fn check_scene(text: &str, name: &str) -> Option<Scene> {
-    match Scene::from_str(text, name) {
+    let result = Scene::from_str(text, name);
+    super::mesh::check_mesh(&result, text);
+    match result {
         Ok(scene) => {
             pack_small(&scene);
             Some(scene)

@@ -21,6 +21,18 @@ use crate::contact::{Sym3, Vec3};
 /// indefinite.
 pub const SINGULAR_PIVOT: f64 = 1.0 / (1u64 << 46) as f64;
 
+/// What the rank decision of a form drops from it (`singular_form`): the entries its
+/// factorisation leaves once the pivots run out that are at most `UNRESOLVED = ε²`
+/// times its largest diagonal entry. The coefficients of `f` carry about `ε²` of the
+/// size of their terms (module docs), so such entries cannot be part of a coefficient
+/// that does not vanish with the rank; they can only be the whole of one that does
+/// (a disc 1e-110 thick, a needle whose other entries are subnormal), where they would
+/// decide which end `F` tends to (fuzz target `contact_bits`: μ² depended on the
+/// order of the pair, λ was at the wrong end). The rounding of a singular form written
+/// in doubles leaves entries of order ε, which are kept: the answers of the reference
+/// pairs are unchanged, bitwise.
+const UNRESOLVED: f64 = f64::EPSILON * f64::EPSILON;
+
 /// A double-double `hi + lo`.
 #[derive(Debug, Clone, Copy)]
 struct Dd {
@@ -163,8 +175,19 @@ pub(super) fn coefficients(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4
 /// below `−SINGULAR_PIVOT`, or, once the remaining diagonal is negligible, an entry
 /// beside it that is not.
 pub(crate) fn rank(q: &Sym3) -> Option<usize> {
+    singular_form(q).map(|(k, _)| k)
+}
+
+/// [`rank`], and the form of that rank `q` is taken for: `q` less the entries of the
+/// part its factorisation leaves once the pivots run out (the Schur complement of the
+/// pivots taken, at most [`SINGULAR_PIVOT`] in every entry) that are below what the
+/// coefficients of `f` resolve, [`UNRESOLVED`]. `q` itself, bitwise, if it has full
+/// rank, or that part is exactly 0 (a disc or needle written along the axes) or all of
+/// it above `UNRESOLVED` (the rounding of a rotated one).
+pub(crate) fn singular_form(q: &Sym3) -> Option<(usize, Sym3)> {
     let mut m = [[q[0], q[1], q[2]], [q[1], q[3], q[4]], [q[2], q[4], q[5]]];
-    let tol = SINGULAR_PIVOT * q[0].max(q[3]).max(q[5]).max(1.0);
+    let scale = q[0].max(q[3]).max(q[5]).max(1.0);
+    let tol = SINGULAR_PIVOT * scale;
     // An entry beside the diagonal is at most the geometric mean of its diagonal
     // neighbours in a semi-definite form; beyond that (and rounding) it is indefinite,
     // and the elimination below stays within the size of the diagonal.
@@ -187,7 +210,18 @@ pub(crate) fn rank(q: &Sym3) -> Option<usize> {
             let negligible = rest
                 .iter()
                 .all(|&i| rest.iter().all(|&j| m[i][j].abs() <= tol));
-            return negligible.then_some(k);
+            // The rows and columns of the pivots taken are those of q; the block of
+            // the rest was q's less the Schur complement m left in it.
+            let mut projected = *q;
+            for &i in rest {
+                for &j in rest.iter().filter(|&&j| j >= i) {
+                    let at = SYM_INDEX[i][j];
+                    if m[i][j].abs() <= UNRESOLVED * scale {
+                        projected[at] = q[at] - m[i][j];
+                    }
+                }
+            }
+            return negligible.then_some((k, projected));
         }
         let at = rest.iter().position(|&i| i == p).expect("p is left");
         left.copy_within(at + 1..n, at);
@@ -198,8 +232,11 @@ pub(crate) fn rank(q: &Sym3) -> Option<usize> {
             }
         }
     }
-    Some(3)
+    Some((3, *q))
 }
+
+/// The index in a [`Sym3`] of the entry at row `i`, column `j`.
+const SYM_INDEX: [[usize; 3]; 3] = [[0, 1, 2], [1, 3, 4], [2, 4, 5]];
 
 #[cfg(test)]
 mod tests {
@@ -243,6 +280,25 @@ mod tests {
         let (a, b) = coefficients(&r, &needle, &ball);
         assert_eq!((a[0], b[0], b[1]), (0.0, 0.0, 0.0));
         assert!(b[2] > 0.0 && a[1] > 0.0);
+    }
+
+    /// The entries a rank decision drops are those below [`UNRESOLVED`]: a needle's
+    /// subnormal entries and a disc's 1e-221 thickness go, the rounding of a rotated
+    /// needle (entries of order ε off its rank) stays, bitwise.
+    #[test]
+    fn singular_form_drops_only_what_the_coefficients_cannot_resolve() {
+        let needle = [2.7e-315, 2.6e-315, 0.0, 0.0, 1.8e-317, 1.0];
+        assert_eq!(
+            singular_form(&needle),
+            Some((1, [0.0, 0.0, 0.0, 0.0, 1.8e-317, 1.0]))
+        );
+        let disc = [1.0, 0.0, 0.0, 1e-8, 1.25e-221, 1.25e-221];
+        let (k, flat) = singular_form(&disc).unwrap();
+        assert_eq!((k, flat[5]), (2, 0.0));
+        assert_eq!(flat[..5], disc[..5]);
+        let h = 0.5;
+        let rounded = [h, h, 0.0, h + f64::EPSILON, 0.0, 0.0];
+        assert_eq!(singular_form(&rounded), Some((1, rounded)));
     }
 
     #[test]

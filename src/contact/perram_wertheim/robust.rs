@@ -36,7 +36,7 @@
 //! coefficients accurate to about `ε²` (module [`exact`](super::exact)), so μ² is
 //! accurate to a few ulps.
 
-use super::exact::{coefficients, rank};
+use super::exact::{coefficients, rank, singular_form};
 use super::MAX_ITERATIONS;
 use crate::contact::ldl::Ldl;
 use crate::contact::scale::{exponent, finish, ldexp};
@@ -91,8 +91,11 @@ pub(super) fn solve_with_complement(
 ) -> Result<(Contact, f64), ContactError> {
     let (e1, q1) = normalised(q1, "q1")?;
     let (e2, q2) = normalised(q2, "q2")?;
-    let k1 = rank(&q1).ok_or_else(|| indefinite(&q1, "q1"))?;
-    let k2 = rank(&q2).ok_or_else(|| indefinite(&q2, "q2"))?;
+    // Each form as the form of its rank (entries a rank decision declares negligible,
+    // subnormal ones among them, would otherwise reach the coefficients that do not
+    // vanish with the rank, and decide which end F tends to).
+    let (k1, q1) = singular_form(&q1).ok_or_else(|| indefinite(&q1, "q1"))?;
+    let (k2, q2) = singular_form(&q2).ok_or_else(|| indefinite(&q2, "q2"))?;
     let rmax = r[0].abs().max(r[1].abs()).max(r[2].abs());
     if rmax == 0.0 {
         return Ok((finish(0, 0.0, 0.5, Stop::Exact, 0)?, 0.5));

@@ -128,6 +128,18 @@ pub(super) fn sized_box(
                 size: domain.size.map(|l| l * scale),
                 ..domain
             };
+            if !scaled.size.iter().all(|l| l.is_finite()) {
+                // Grains of 1e103 and more (1e154 in 2D): their volume, and the box
+                // scaled to it, are beyond the double range.
+                return Err(src.invalid_at(
+                    "target_fraction",
+                    f,
+                    format!(
+                        "the measured grains' total volume ({volume:e}) is beyond the range                          of the box this would size (sides {:e}); give the table in smaller                          units",
+                        domain.size[0] * scale
+                    ),
+                ));
+            }
             fits(&scaled, f.span(), "target_fraction")?;
             Ok(scaled)
         }
