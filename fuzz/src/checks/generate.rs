@@ -105,6 +105,7 @@ const TABLES: [(&str, &[&str]); 11] = [
             "effort",
             "unjam",
             "gap",
+            "time_limit",
         ],
     ),
     ("units", &["length", "stress"]),

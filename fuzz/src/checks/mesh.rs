@@ -82,7 +82,8 @@ const MESH_KEYS: [&str; 3] = ["mesh", "mesh_size", "mesh_order"];
 
 /// The mesh's part of the scene checks. A valid scene with a mesh has a `packing.gap`
 /// of at least [`MIN_MESH_GAP`], a `mesh_size` in [`MESH_SIZE_RANGE`], an order of 1 or
-/// 2, elastic constants on every phase and on the matrix, and is 3D; a refusal whose
+/// 2, and elastic constants on every phase and on the matrix (3D and 2D alike: 2D
+/// scenes are meshed as triangles since issue 29's second round); a refusal whose
 /// line is a mesh key's (`mesh_size = …` under `[output]`) names that key
 /// (`output.mesh_size`), and a refusal naming a mesh key or `packing.gap` because of
 /// the mesh points at a line that holds it (what the mesh needs and is missing, such
@@ -99,8 +100,7 @@ pub fn check_mesh(result: &Result<Scene, SceneError>, text: &str) {
                     && (lo..=hi).contains(&mesh.size)
                     && matches!(mesh.order, 1 | 2)
                     && scene.phases.iter().all(|p| p.elastic.is_some())
-                    && scene.matrix.elastic.is_some()
-                    && scene.domain.dimension == grainpack::contact::Dimension::Three,
+                    && scene.matrix.elastic.is_some(),
                 "a mesh accepted outside its limits: {mesh:?}, gap {}: {text:?}",
                 scene.packing.gap
             );

@@ -86,7 +86,7 @@ pub const OTHERS: [&str; 36] = [
 ];
 
 /// Words some keys take, besides the pools above.
-pub const WORDS: [&str; 20] = [
+pub const WORDS: [&str; 21] = [
     "\"periodic\"",
     "\"reflecting\"",
     "\"volume\"",
@@ -94,6 +94,7 @@ pub const WORDS: [&str; 20] = [
     "\"linear\"",
     "\"log\"",
     "\"swap\"",
+    "\"anneal\"",
     "\"none\"",
     "\"draw\"",
     "\"exact\"",
