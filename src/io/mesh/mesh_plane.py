@@ -17,8 +17,7 @@ import time
 from mesh_common import MeshError, percentile
 from mesh_geometry import half_extents, images, window
 from mesh_nodes import check_faces, number_nodes, pair_by_coordinates
-from mesh_plane_write import write_plane_inp
-from mesh_write import write_vtu
+from mesh_write import write_inp, write_vtu
 
 # Two pieces of opposite edges are images of each other when the ends of one, moved
 # across the rectangle, lie on the other's to this fraction of its length (OCC's
@@ -208,7 +207,7 @@ def mesh_plane(gmsh, job):
     files = job["files"]
     gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
     gmsh.write(files["msh"])
-    write_plane_inp(files["inp"], job, coords, elements, images_, origin)
+    write_inp(files["inp"], job, coords, elements, images_, origin)
     write_vtu(files["vtu"], coords, elements, order, job["matrix_phase"], dimension=2)
     return stats(job, elements, coords, sicn, origin, margins, pairs, images_, worst,
                  geometry_seconds, mesh_seconds, gmsh.__version__)

@@ -1,5 +1,5 @@
-"""The files of a 3D mesh besides mesh.msh (which gmsh writes): mesh.inp, the layout
-of rve.inp on the tetrahedra, and mesh.vtu."""
+"""The files of a mesh besides mesh.msh (which gmsh writes): mesh.inp, the layout of
+rve.inp on the tetrahedra or (2D) the triangles, and mesh.vtu."""
 
 from mesh_common import on_plane
 
@@ -25,17 +25,33 @@ def num(x):
     return text
 
 
+# The plane-strain sections' thickness (PLANE_THICKNESS of rve.inp): forces are per
+# unit thickness.
+PLANE_THICKNESS = 1.0
+
+
 def write_inp(path, job, coords, elements, images, origin):
-    """mesh.inp: the layout of rve.inp (src/io/decks/abaqus.rs) on the tetrahedra."""
+    """mesh.inp: the layout of rve.inp (src/io/decks/abaqus.rs) on the tetrahedra (C3D4
+    or C3D10), or in 2D (two lengths in the job's box) on the triangles: CPE3 or CPE6,
+    plane-strain sections of thickness 1 and rve.inp's own plane step (the job's
+    plane_step, written by pack). One writer for both: only the element, the heading,
+    the sections and the step differ."""
     size = job["box"]
-    order = job["order"]
+    dims = len(size)
+    plane = dims == 2
+    element = (("CPE3", "CPE6") if plane else ("C3D4", "C3D10"))[job["order"] - 1]
     n_nodes = len(coords)
-    rp = [n_nodes + 1, n_nodes + 2, n_nodes + 3]
+    rp = [n_nodes + 1 + d for d in range(dims)]
+    rp_names = ["RPX", "RPY", "RPZ"][:dims]
+    lengths = " x ".join(repr(x) for x in size)
+    at = ", ".join(repr(x) for x in origin[:dims])
     with open(path, "w") as f:
         f.write("*Heading\n")
-        f.write(f"grainpack conforming mesh: {len(elements)} C3D{4 if order == 1 else 10} "
-                f"elements, box {size[0]!r} x {size[1]!r} x {size[2]!r} "
-                f"{job['length_unit']} from ({origin[0]!r}, {origin[1]!r}, {origin[2]!r}), "
+        # tools/ccx_plane.py reads the rectangle's lengths from this line.
+        what = (f"{element} elements (plane strain, thickness 1), rectangle" if plane
+                else f"{element} elements, box")
+        f.write(f"grainpack conforming mesh: {len(elements)} {what} {lengths} "
+                f"{job['length_unit']} from ({at}), "
                 f"{'periodic' if job['periodic'] else 'not periodic'}\n")
         f.write(f"** units (the scene's [units]): lengths in {job['length_unit']}, "
                 f"stresses and E in {job['stress_unit']}, forces in "
@@ -43,13 +59,12 @@ def write_inp(path, job, coords, elements, images, origin):
         f.write("** nodes and elements numbered as in mesh.msh; element sets GRAIN_<id> "
                 "(grains.csv's id), one per phase and the matrix\n*Node\n")
         for n in range(1, n_nodes + 1):
-            x, y, z = coords[n]
-            f.write(f"{n}, {num(x)}, {num(y)}, {num(z)}\n")
-        for d in range(3):
-            at = list(origin)
-            at[d] += size[d]
-            f.write(f"{rp[d]}, {num(at[0])}, {num(at[1])}, {num(at[2])}\n")
-        f.write(f"*Element, type=C3D{4 if order == 1 else 10}\n")
+            f.write(f"{n}, " + ", ".join(num(x) for x in coords[n][:dims]) + "\n")
+        for d in range(dims):
+            corner = list(origin[:dims])
+            corner[d] += size[d]
+            f.write(f"{rp[d]}, " + ", ".join(num(x) for x in corner) + "\n")
+        f.write(f"*Element, type={element}\n")
         for e, (_, conn, _, _) in enumerate(elements):
             f.write(f"{e + 1}, " + ", ".join(str(n) for n in conn) + "\n")
         by_grain, by_phase = {}, {}
@@ -64,14 +79,14 @@ def write_inp(path, job, coords, elements, images, origin):
             if m["phase"] in by_phase:
                 write_list(f, f"*Elset, elset={m['name']}", by_phase[m["phase"]])
         write_node_sets(f, coords, origin, size)
-        for name, id_ in zip(["RPX", "RPY", "RPZ"], rp):
+        for name, id_ in zip(rp_names, rp):
             f.write(f"*Nset, nset={name}\n{id_}\n")
-        f.write("*Nset, nset=RP\nRPX, RPY, RPZ\n")
+        f.write("*Nset, nset=RP\n" + ", ".join(rp_names) + "\n")
         if job["periodic"]:
             f.write("*Equation\n")
             for node in sorted(images):
                 image, far = images[node]
-                for dof in (1, 2, 3):
+                for dof in range(1, dims + 1):
                     terms = [(node, 1.0), (image, -1.0)] + [(rp[d], -1.0) for d in far]
                     f.write(f"{len(terms)}\n")
                     for i in range(0, len(terms), 4):
@@ -82,18 +97,29 @@ def write_inp(path, job, coords, elements, images, origin):
                 continue
             f.write(f"*Material, name={m['name']}\n*Elastic\n{m['young']!r}, {m['poisson']!r}\n")
             f.write(f"*Solid Section, elset={m['name']}, material={m['name']}\n")
-        strain = job["strain"]
-        f.write(f"{job['step_marker']}: uniaxial strain {strain:e} along x\n")
-        f.write("*Boundary\n1, 1, 3, 0.0\n*Step\n*Static\n*Boundary\n")
-        if job["periodic"]:
-            f.write(f"RPX, 1, 1, {strain * size[0]!r}\n")
-            f.write("RPX, 2, 3, 0.0\nRPY, 1, 1, 0.0\nRPY, 3, 3, 0.0\nRPZ, 1, 2, 0.0\n")
-            f.write("*Node Print, nset=RP\nU\n*Node Print, nset=X1, totals=only\nRF\n")
+            if plane:
+                f.write(f"{PLANE_THICKNESS!r}\n")
+        if plane:
+            f.write(job["plane_step"])
         else:
-            f.write("X0, 1, 1, 0.0\nY0, 2, 2, 0.0\nZ0, 3, 3, 0.0\n")
-            f.write(f"X1, 1, 1, {strain * size[0]!r}\n")
-            f.write("*Node Print, nset=X1, totals=only\nRF\n")
-        f.write("*End Step\n")
+            write_solid_step(f, job, size)
+
+
+def write_solid_step(f, job, size):
+    """The uniaxial step of rve.inp in 3D: periodic through the reference nodes, or
+    on the faces of a walled box."""
+    strain = job["strain"]
+    f.write(f"{job['step_marker']}: uniaxial strain {strain:e} along x\n")
+    f.write("*Boundary\n1, 1, 3, 0.0\n*Step\n*Static\n*Boundary\n")
+    if job["periodic"]:
+        f.write(f"RPX, 1, 1, {strain * size[0]!r}\n")
+        f.write("RPX, 2, 3, 0.0\nRPY, 1, 1, 0.0\nRPY, 3, 3, 0.0\nRPZ, 1, 2, 0.0\n")
+        f.write("*Node Print, nset=RP\nU\n*Node Print, nset=X1, totals=only\nRF\n")
+    else:
+        f.write("X0, 1, 1, 0.0\nY0, 2, 2, 0.0\nZ0, 3, 3, 0.0\n")
+        f.write(f"X1, 1, 1, {strain * size[0]!r}\n")
+        f.write("*Node Print, nset=X1, totals=only\nRF\n")
+    f.write("*End Step\n")
 
 
 def write_node_sets(f, coords, origin, size):

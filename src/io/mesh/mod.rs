@@ -53,14 +53,13 @@ const SCRIPT_MESH_FAILED: i32 = 3;
 
 /// The mesher's Python modules (name, source), embedded so that `pack` needs no file
 /// beside it; `LOADER` makes them importable and runs `gmsh_mesh.main()`.
-const MODULES: [(&str, &str); 7] = [
+const MODULES: [(&str, &str); 6] = [
     ("gmsh_mesh", include_str!("gmsh_mesh.py")),
     ("mesh_common", include_str!("mesh_common.py")),
     ("mesh_geometry", include_str!("mesh_geometry.py")),
     ("mesh_nodes", include_str!("mesh_nodes.py")),
     ("mesh_write", include_str!("mesh_write.py")),
     ("mesh_plane", include_str!("mesh_plane.py")),
-    ("mesh_plane_write", include_str!("mesh_plane_write.py")),
 ];
 
 /// Run as `python -c LOADER job.json`, with [`MODULES`] as a JSON object on stdin.
