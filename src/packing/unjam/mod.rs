@@ -40,7 +40,7 @@ use super::fire::{Context, Fire, Outcome};
 use super::state::State;
 use super::{PackError, ProtocolParams};
 use crate::scene::Unjam;
-use rand::SeedableRng;
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 /// The random stream of the moves (the scene's sampling uses stream 0, the starting
@@ -88,6 +88,30 @@ pub(crate) const SWAP_RELAX_STEPS: u64 = 250;
 /// the window keeps the attempts where they may pay. 2 spans a lognormal size law of
 /// σ = 0.25 over about a standard deviation either side.
 pub(crate) const SWAP_VOLUME_RATIO: f64 = 2.0;
+
+/// The grains by volume (ties by index), to draw a swap partner of similar volume.
+pub(crate) struct Partners {
+    by_volume: Vec<usize>,
+    sorted: Vec<f64>,
+}
+
+impl Partners {
+    pub fn of(volumes: &[f64]) -> Self {
+        let mut by_volume: Vec<usize> = (0..volumes.len()).collect();
+        by_volume.sort_by(|&a, &b| volumes[a].total_cmp(&volumes[b]).then(a.cmp(&b)));
+        let sorted = by_volume.iter().map(|&g| volumes[g]).collect();
+        Self { by_volume, sorted }
+    }
+
+    /// A grain drawn uniformly among those whose volume is within
+    /// [`SWAP_VOLUME_RATIO`] of `v` (one draw, whatever the outcome, so that the
+    /// stream does not depend on the outcomes).
+    pub fn draw(&self, v: f64, rng: &mut ChaCha8Rng) -> usize {
+        let lo = self.sorted.partition_point(|&x| x < v / SWAP_VOLUME_RATIO);
+        let hi = self.sorted.partition_point(|&x| x <= v * SWAP_VOLUME_RATIO);
+        self.by_volume[rng.random_range(lo..hi)]
+    }
+}
 
 /// The moves of one packing: the mode and its random stream.
 pub(crate) struct Unjammer {

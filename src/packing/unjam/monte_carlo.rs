@@ -4,7 +4,7 @@
 //! `overlaps_prepared`) and inside the walls. The step sizes adapt toward
 //! [`ACCEPTANCE`].
 
-use super::SWAP_VOLUME_RATIO;
+use super::Partners;
 use crate::contact::Dimension;
 use crate::contact::{dot, overlaps_prepared, PreparedEllipsoid};
 use crate::octree::{wrap_coordinate, Neighbour, Octree, Params, Sphere};
@@ -73,13 +73,7 @@ impl MonteCarlo {
         rng: &mut ChaCha8Rng,
     ) -> Result<(u64, u64), PackError> {
         let n = state.len();
-        let mut by_volume: Vec<usize> = (0..n).collect();
-        by_volume.sort_by(|&a, &b| {
-            state.volumes[a]
-                .total_cmp(&state.volumes[b])
-                .then(a.cmp(&b))
-        });
-        let sorted: Vec<f64> = by_volume.iter().map(|&g| state.volumes[g]).collect();
+        let partners = Partners::of(&state.volumes);
         let plane = state.domain.dimension == Dimension::Two;
         let (mut swaps, mut moves) = (0u64, 0u64);
         for _ in 0..sweeps {
@@ -137,10 +131,7 @@ impl MonteCarlo {
             let mut occupant: Vec<usize> = (0..n).collect();
             let mut place: Vec<usize> = (0..n).collect();
             for i in 0..n {
-                let v = state.volumes[i];
-                let lo = sorted.partition_point(|&x| x < v / SWAP_VOLUME_RATIO);
-                let hi = sorted.partition_point(|&x| x <= v * SWAP_VOLUME_RATIO);
-                let j = by_volume[rng.random_range(lo..hi)];
+                let j = partners.draw(state.volumes[i], rng);
                 if j == i {
                     continue;
                 }

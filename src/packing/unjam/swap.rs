@@ -6,19 +6,19 @@
 //! with the largest bounding radius, and a grain's neighbours at a position are the
 //! stored positions within reach of its own bounding sphere.
 
-use super::SWAP_VOLUME_RATIO;
+use super::Partners;
 use crate::contact::{contact_function_fast, dot};
 use crate::octree::{Neighbour, Octree, Params, Sphere};
 use crate::packing::forces::pair_energy;
 use crate::packing::state::State;
 use crate::packing::PackError;
 use crate::scene::Boundary;
-use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 /// One sweep at scale `big_s` (the scale the energy is taken at): one swap attempt per
 /// grain, in index order, each with a partner drawn uniformly among the grains whose
-/// volume is within [`SWAP_VOLUME_RATIO`] of its own, kept when it lowers the energy.
+/// volume is within [`SWAP_VOLUME_RATIO`](super::SWAP_VOLUME_RATIO) of its own, kept
+/// when it lowers the energy.
 /// Returns the attempts (pairs compared) and the swaps kept.
 pub(crate) fn sweep(
     state: &mut State,
@@ -26,14 +26,7 @@ pub(crate) fn sweep(
     rng: &mut ChaCha8Rng,
 ) -> Result<(u64, u64), PackError> {
     let n = state.len();
-    // Grains by volume (ties by index), for the partner window.
-    let mut by_volume: Vec<usize> = (0..n).collect();
-    by_volume.sort_by(|&a, &b| {
-        state.volumes[a]
-            .total_cmp(&state.volumes[b])
-            .then(a.cmp(&b))
-    });
-    let sorted: Vec<f64> = by_volume.iter().map(|&g| state.volumes[g]).collect();
+    let partners = Partners::of(&state.volumes);
     // Wrapped (periodic) or inside the box (walled): the octree's shifts refer to them.
     state.wrap();
     let places = state.centres.clone();
@@ -59,11 +52,7 @@ pub(crate) fn sweep(
         found: &mut found,
     };
     for i in 0..n {
-        let v = look.state.volumes[i];
-        let lo = sorted.partition_point(|&x| x < v / SWAP_VOLUME_RATIO);
-        let hi = sorted.partition_point(|&x| x <= v * SWAP_VOLUME_RATIO);
-        // Drawn for every grain, so that the stream does not depend on the outcomes.
-        let j = by_volume[rng.random_range(lo..hi)];
+        let j = partners.draw(look.state.volumes[i], rng);
         if j == i || look.same(i, j) {
             continue;
         }
