@@ -19,16 +19,15 @@ box length.
 """
 
 import json
-import math
 import sys
 import time
 
-from mesh_common import MeshError, percentile
+from mesh_common import MeshError
 from mesh_geometry import build_geometry, half_extents, make_periodic, window
 from mesh_nodes import (TET10_ORDER, check_faces, extract, group_by_grain, mid_images,
-                        number_nodes, pair_by_coordinates, tet_volume)
+                        number_nodes, pair_by_coordinates, snap, tet_volume)
 from mesh_plane import mesh_plane
-from mesh_write import write_inp, write_vtu
+from mesh_write import finish
 
 # Exit code for "gmsh could not mesh this packing" (pack maps it to its message).
 EXIT_MESH_FAILED = 3
@@ -91,25 +90,12 @@ def mesh(gmsh, job):
         # by their edges (mid_images).
         vertices = {new[n] for _, _, conn in pieces for e in conn for n in e[:4]}
         images = pair_by_coordinates({n: coords[n] for n in vertices}, origin, size)
-        worst = 0.0
-        for node, (image, far) in images.items():
-            target = list(coords[image])
-            for d in far:
-                target[d] += size[d]
-            worst = max(worst, max(abs(target[i] - coords[node][i]) for i in range(3)))
-            coords[node] = tuple(target)
-            gmsh.model.mesh.setNode(node, target, [])
+        worst = snap(gmsh, coords, images, size)
         if job["order"] == 2:
             conns = [[new[n] for n in e] for _, _, conn in pieces for e in conn]
             conns = [[e[i] for i in TET10_ORDER] for e in conns]
             middles = mid_images(conns, coords, images, origin, size)
-            for node, (image, far) in middles.items():
-                target = list(coords[image])
-                for d in far:
-                    target[d] += size[d]
-                worst = max(worst, max(abs(target[i] - coords[node][i]) for i in range(3)))
-                coords[node] = tuple(target)
-                gmsh.model.mesh.setNode(node, target, [])
+            worst = snap(gmsh, coords, middles, size, worst)
             images.update(middles)
         check_faces(coords, images, origin, size)
     else:
@@ -125,47 +111,10 @@ def mesh(gmsh, job):
                 nodes = [nodes[i] for i in TET10_ORDER]
             vol = tet_volume([coords[n] for n in nodes[:4]])
             elements.append((grain, nodes, float(q), vol))
-    sicn = sorted(q for _, _, q, _ in elements)
-    inverted = sum(1 for q in sicn if q <= 0.0)
-    if inverted:
-        raise MeshError(f"{inverted} of {len(sicn)} elements are inverted (SICN <= 0)")
-    files = job["files"]
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.write(files["msh"])
-    write_inp(files["inp"], job, coords, elements, images, origin)
-    write_vtu(files["vtu"], coords, elements, job["order"], job["matrix_phase"])
-    box_volume = size[0] * size[1] * size[2]
-    phases = {}
-    for grain, _, _, vol in elements:
-        p = job["matrix_phase"] if grain is None else grain["phase"]
-        phases[p] = phases.get(p, 0.0) + vol
-    exact = {}
-    for g in job["grains"]:
-        a = g["semi_axes"]
-        exact[g["phase"]] = exact.get(g["phase"], 0.0) + 4.0 / 3.0 * math.pi * a[0] * a[1] * a[2]
-    exact[job["matrix_phase"]] = box_volume - sum(exact.values())
-    return {
-        "elements": len(elements),
-        "nodes": len(coords),
-        "order": job["order"],
-        "element_size": job["element_size"],
-        "min_sicn": sicn[0],
-        "p1_sicn": percentile(sicn, 0.01),
-        "geometry_seconds": geometry_seconds,
-        "mesh_seconds": mesh_seconds,
-        "retried_with_curvature": retried,
-        "origin": origin,
-        "face_margin": margins if job["periodic"] else None,
-        "periodic_face_pairs": pairs,
-        "periodic_nodes": len(images),
-        "largest_snap": worst,
-        "phase_volume_fractions": [
-            {"phase": p, "mesh": phases.get(p, 0.0) / box_volume,
-             "exact": exact.get(p, 0.0) / box_volume}
-            for p in sorted(set(phases) | set(exact))
-        ],
-        "gmsh": gmsh.__version__,
-    }
+    report = {"geometry_seconds": geometry_seconds, "mesh_seconds": mesh_seconds,
+              "retried": retried, "margins": margins, "pairs": pairs, "worst": worst}
+    return finish(gmsh, job, coords, elements, images, origin, report)
+
 
 def main():
     with open(sys.argv[1]) as f:

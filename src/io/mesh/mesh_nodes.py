@@ -152,3 +152,17 @@ def check_faces(coords, images, origin, size):
             raise MeshError(f"node {n} at {p} lies on a far box face but has no periodic "
                             "partner")
 
+
+
+def snap(gmsh, coords, images, size, worst=0.0):
+    """Moves each image node exactly onto its partner plus the box lengths it is away
+    (`images[node] = (partner, far axes)`), in `coords` and in gmsh; returns the
+    largest move, at least `worst`."""
+    for node, (image, far) in images.items():
+        target = list(coords[image])
+        for d in far:
+            target[d] += size[d]
+        worst = max(worst, max(abs(target[i] - coords[node][i]) for i in range(3)))
+        coords[node] = tuple(target)
+        gmsh.model.mesh.setNode(node, target, [])
+    return worst

@@ -14,10 +14,10 @@ onto their images plus the rectangle's length.
 import math
 import time
 
-from mesh_common import MeshError, percentile
+from mesh_common import MeshError
 from mesh_geometry import half_extents, images, window
-from mesh_nodes import check_faces, number_nodes, pair_by_coordinates
-from mesh_write import write_inp, write_vtu
+from mesh_nodes import check_faces, number_nodes, pair_by_coordinates, snap
+from mesh_write import finish
 
 # Two pieces of opposite edges are images of each other when the ends of one, moved
 # across the rectangle, lie on the other's to this fraction of its length (OCC's
@@ -181,13 +181,7 @@ def mesh_plane(gmsh, job):
         # Vertices and middle nodes alike: on the rectangle's straight edges the middle
         # nodes of matched edges are matched too.
         images_ = pair_by_coordinates(coords, origin, size)
-        for node, (image, far) in images_.items():
-            target = list(coords[image])
-            for d in far:
-                target[d] += size[d]
-            worst = max(worst, max(abs(target[i] - coords[node][i]) for i in range(3)))
-            coords[node] = tuple(target)
-            gmsh.model.mesh.setNode(node, target, [])
+        worst = snap(gmsh, coords, images_, size)
         check_faces(coords, images_, origin, size)
     mesh_seconds = time.monotonic() - started - geometry_seconds
     elements = []
@@ -200,49 +194,6 @@ def mesh_plane(gmsh, job):
                 nodes = [nodes[i] for i in REVERSED[npe]]
                 area = -area
             elements.append((grain, nodes, float(q), area))
-    sicn = sorted(q for _, _, q, _ in elements)
-    inverted = sum(1 for q in sicn if q <= 0.0)
-    if inverted:
-        raise MeshError(f"{inverted} of {len(sicn)} elements are inverted (SICN <= 0)")
-    files = job["files"]
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.write(files["msh"])
-    write_inp(files["inp"], job, coords, elements, images_, origin)
-    write_vtu(files["vtu"], coords, elements, order, job["matrix_phase"], dimension=2)
-    return stats(job, elements, coords, sicn, origin, margins, pairs, images_, worst,
-                 geometry_seconds, mesh_seconds, gmsh.__version__)
-
-
-def stats(job, elements, coords, sicn, origin, margins, pairs, images_, worst,
-          geometry_seconds, mesh_seconds, version):
-    size = job["box"]
-    rect = size[0] * size[1]
-    phases, exact = {}, {}
-    for grain, _, _, area in elements:
-        p = job["matrix_phase"] if grain is None else grain["phase"]
-        phases[p] = phases.get(p, 0.0) + area
-    for g in job["grains"]:
-        a = g["semi_axes"]
-        exact[g["phase"]] = exact.get(g["phase"], 0.0) + math.pi * a[0] * a[1]
-    exact[job["matrix_phase"]] = rect - sum(exact.values())
-    return {
-        "elements": len(elements),
-        "nodes": len(coords),
-        "order": job["order"],
-        "element_size": job["element_size"],
-        "min_sicn": sicn[0],
-        "p1_sicn": percentile(sicn, 0.01),
-        "geometry_seconds": geometry_seconds,
-        "mesh_seconds": mesh_seconds,
-        "retried_with_curvature": False,
-        "origin": origin,
-        "face_margin": margins if job["periodic"] else None,
-        "periodic_face_pairs": pairs,
-        "periodic_nodes": len(images_),
-        "largest_snap": worst,
-        "phase_volume_fractions": [
-            {"phase": p, "mesh": phases.get(p, 0.0) / rect, "exact": exact.get(p, 0.0) / rect}
-            for p in sorted(set(phases) | set(exact))
-        ],
-        "gmsh": version,
-    }
+    report = {"geometry_seconds": geometry_seconds, "mesh_seconds": mesh_seconds,
+              "retried": False, "margins": margins, "pairs": pairs, "worst": worst}
+    return finish(gmsh, job, coords, elements, images_, origin, report)

@@ -1,7 +1,9 @@
 """The files of a mesh besides mesh.msh (which gmsh writes): mesh.inp, the layout of
 rve.inp on the tetrahedra or (2D) the triangles, and mesh.vtu."""
 
-from mesh_common import on_plane
+import math
+
+from mesh_common import MeshError, on_plane, percentile
 
 def write_list(f, header, ids):
     f.write(header + "\n")
@@ -185,3 +187,53 @@ def write_vtu(path, coords, elements, order, phases, dimension=3):
         f.write(" ".join(repr(q) for _, _, q, _ in elements) + "\n")
         f.write("</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
 
+
+
+def finish(gmsh, job, coords, elements, images, origin, report):
+    """Refuses inverted elements, writes mesh.msh (gmsh), mesh.inp and mesh.vtu, and
+    returns summary.json's mesh block: the `report` entries (times, retry, margins,
+    face pairs, largest snap) among the counts, the quality and each phase's volume
+    (area in 2D) fraction against the packing's exact one."""
+    sicn = sorted(q for _, _, q, _ in elements)
+    inverted = sum(1 for q in sicn if q <= 0.0)
+    if inverted:
+        raise MeshError(f"{inverted} of {len(sicn)} elements are inverted (SICN <= 0)")
+    size = job["box"]
+    dims = len(size)
+    files = job["files"]
+    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+    gmsh.write(files["msh"])
+    write_inp(files["inp"], job, coords, elements, images, origin)
+    write_vtu(files["vtu"], coords, elements, job["order"], job["matrix_phase"],
+              dimension=dims)
+    box = math.prod(size)
+    phases, exact = {}, {}
+    for grain, _, _, measure in elements:
+        p = job["matrix_phase"] if grain is None else grain["phase"]
+        phases[p] = phases.get(p, 0.0) + measure
+    for g in job["grains"]:
+        a = g["semi_axes"]
+        own = math.pi * a[0] * a[1] if dims == 2 else 4.0 / 3.0 * math.pi * a[0] * a[1] * a[2]
+        exact[g["phase"]] = exact.get(g["phase"], 0.0) + own
+    exact[job["matrix_phase"]] = box - sum(exact.values())
+    return {
+        "elements": len(elements),
+        "nodes": len(coords),
+        "order": job["order"],
+        "element_size": job["element_size"],
+        "min_sicn": sicn[0],
+        "p1_sicn": percentile(sicn, 0.01),
+        "geometry_seconds": report["geometry_seconds"],
+        "mesh_seconds": report["mesh_seconds"],
+        "retried_with_curvature": report["retried"],
+        "origin": origin,
+        "face_margin": report["margins"] if job["periodic"] else None,
+        "periodic_face_pairs": report["pairs"],
+        "periodic_nodes": len(images),
+        "largest_snap": report["worst"],
+        "phase_volume_fractions": [
+            {"phase": p, "mesh": phases.get(p, 0.0) / box, "exact": exact.get(p, 0.0) / box}
+            for p in sorted(set(phases) | set(exact))
+        ],
+        "gmsh": gmsh.__version__,
+    }
