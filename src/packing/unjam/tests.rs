@@ -146,6 +146,18 @@ fn swaps_in_the_loop_keep_it_clean_frozen_deterministic_and_never_less_dense() {
         one.fraction,
         one.counters
     );
+    assert_clean_frozen_denser_deterministic(&first, &one, &two, &specs);
+}
+
+/// `one` (and `two`, the same job on two threads) after unjamming moves: clean, at
+/// least as dense as `first` (no moves), the frozen orientations exactly as drawn, and
+/// the same on one and two threads.
+fn assert_clean_frozen_denser_deterministic(
+    first: &Packing,
+    one: &Packing,
+    two: &Packing,
+    specs: &[GrainSpec],
+) {
     assert!(one.verification.is_clean(), "{:?}", one.verification);
     assert!(
         one.fraction >= first.fraction,
@@ -153,7 +165,7 @@ fn swaps_in_the_loop_keep_it_clean_frozen_deterministic_and_never_less_dense() {
         one.fraction,
         first.fraction
     );
-    for (g, s) in one.grains.iter().zip(&specs) {
+    for (g, s) in one.grains.iter().zip(specs) {
         assert_eq!(g.quaternion, s.quaternion);
     }
     assert_eq!(one.fraction, two.fraction);
@@ -176,21 +188,8 @@ fn annealing_keeps_frozen_grains_inside_the_walls_and_deterministic() {
     scene.packing.unjam = Unjam::Anneal;
     let one = pack_on(1, &scene, &specs);
     let two = pack_on(2, &scene, &specs);
-    assert!(one.verification.is_clean(), "{:?}", one.verification);
     assert!(one.counters.swaps > 0, "{:?}", one.counters);
-    assert!(
-        one.fraction >= first.fraction,
-        "{} < {}",
-        one.fraction,
-        first.fraction
-    );
-    for (g, s) in one.grains.iter().zip(&specs) {
-        assert_eq!(g.quaternion, s.quaternion);
-    }
-    assert_eq!(one.fraction, two.fraction);
-    for (a, b) in one.grains.iter().zip(&two.grains) {
-        assert_eq!((a.centre, a.quaternion), (b.centre, b.quaternion));
-    }
+    assert_clean_frozen_denser_deterministic(&first, &one, &two, &specs);
 }
 
 /// The rounds per cycle follow the documented schedule: 8 with one cycle, doubled per
