@@ -324,7 +324,8 @@ fn check_picture(dir: &Path, scene: &Scene, grains: &[PackedGrain]) {
 }
 
 /// 60 ellipses asked past the reachable estimate of discs, with a gap: the warning
-/// before packing speaks of discs and areas, and of the gap's square.
+/// before packing and the closing report speak of discs and areas, and of the gap's
+/// square.
 #[test]
 fn the_2d_warning_speaks_of_discs_and_the_gap_squared() {
     let dir = scratch("plane", "warning");
@@ -333,10 +334,11 @@ fn the_2d_warning_speaks_of_discs_and_the_gap_squared() {
         aspect_ratio = { distribution = \"constant\", value = 1.5 }\n\
         [packing]\ngap = 0.05\n[output]\ndir = \"out\"\n";
     std::fs::write(dir.join("scene.toml"), scene).unwrap();
-    let run = pack_in(&dir, &["--quiet", "scene.toml"]);
+    let run = pack_in(&dir, &["scene.toml"]);
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(
         err.contains("random packings of discs of the same areas reach about")
+            && err.contains("random close packing of discs of these sizes ≈")
             && err.contains("ellipses free to turn pack denser")
             && err.contains("divided by (1 + packing.gap)² = 1.1025"),
         "{err}"

@@ -109,12 +109,16 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
         };
         eprintln!(
             "pack: {} grains, packing fraction {:.4} reached (requested {:.4}, drawn {:.4}; \
-             random close packing of spheres of these sizes ≈ {:.3}), {} after {} steps in \
+             random close packing of {} of these sizes ≈ {:.3}), {} after {} steps in \
              {:.2} s; {} pairs checked, {kept}",
             packing.grains.len(),
             statistics.packing_fraction,
             d.requested_fraction,
             d.drawn_fraction,
+            match d.dimension {
+                Dimension::Three => "spheres",
+                Dimension::Two => "discs",
+            },
             d.reachable_fraction,
             packing.stop,
             packing.counters.steps,
