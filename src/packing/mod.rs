@@ -62,6 +62,7 @@ mod grains;
 mod jamming;
 mod job;
 mod neighbours;
+mod snapshot;
 mod start;
 mod state;
 mod tuning;
@@ -82,6 +83,7 @@ use effort::{
 use fire::{Context, Fire, Outcome};
 use jamming::Patience;
 use neighbours::Neighbours;
+use snapshot::{finish, restore, Snapshot};
 use state::State;
 
 use crate::scene::GrainSpec;
@@ -346,71 +348,6 @@ fn interrupted(run: &Context<'_>) -> StopReason {
     } else {
         StopReason::Interrupted
     }
-}
-
-/// Puts the state back to a snapshot's centres and orientations.
-fn restore(state: &mut State, snapshot: &Snapshot) -> Result<(), PackError> {
-    state.centres.clone_from(&snapshot.centres);
-    let changed: Vec<(usize, [f64; 4])> = (snapshot.quaternions.iter().enumerate())
-        .filter(|&(i, q)| state.quaternions[i] != *q)
-        .map(|(i, q)| (i, *q))
-        .collect();
-    state.set_orientations(&changed)
-}
-
-/// A clean state kept as the fallback result.
-struct Snapshot {
-    scale: f64,
-    centres: Vec<[f64; 3]>,
-    quaternions: Vec<[f64; 4]>,
-}
-
-impl Snapshot {
-    fn of(state: &State, scale: f64) -> Self {
-        Self {
-            scale,
-            centres: state.centres.clone(),
-            quaternions: state.quaternions.clone(),
-        }
-    }
-}
-
-/// Writes the snapshot out as packed grains (the grains themselves, not inflated by
-/// the gap) and checks it exactly, with the `gap`.
-/// `specs` and the state are in the loop's order: `order[k]` is the input index of the
-/// loop's grain `k`.
-fn finish(
-    specs: &[GrainSpec],
-    order: &[usize],
-    state: &mut State,
-    snapshot: Snapshot,
-    stop: StopReason,
-    counters: Counters,
-    gap: f64,
-) -> Result<Packing, PackError> {
-    let scale = snapshot.scale;
-    state.centres = snapshot.centres;
-    state.wrap();
-    let mut grains = vec![None; specs.len()];
-    for (k, ((spec, c), q)) in specs
-        .iter()
-        .zip(&state.centres)
-        .zip(&snapshot.quaternions)
-        .enumerate()
-    {
-        grains[order[k]] = Some(PackedGrain::of_spec(order[k] as u32, spec, scale, *c, *q));
-    }
-    let grains: Vec<PackedGrain> = grains.into_iter().flatten().collect();
-    let verification = verify(&grains, &state.domain, gap)?;
-    let fraction = state.fraction(scale);
-    Ok(Packing {
-        grains,
-        scale,
-        fraction,
-        stop,
-        counters,
-        verification,
-    })
 }
 
 #[cfg(test)]

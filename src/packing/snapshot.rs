@@ -1,0 +1,75 @@
+//! The loop's clean states: the densest kept as the fallback result, put back into the
+//! state when a later phase starts from it, and finally written out as packed grains
+//! and checked.
+
+use super::grains::{PackedGrain, StopReason};
+use super::job::{Counters, Packing};
+use super::state::State;
+use super::verify::verify;
+use super::PackError;
+use crate::scene::GrainSpec;
+
+/// Puts the state back to a snapshot's centres and orientations.
+pub(super) fn restore(state: &mut State, snapshot: &Snapshot) -> Result<(), PackError> {
+    state.centres.clone_from(&snapshot.centres);
+    let changed: Vec<(usize, [f64; 4])> = (snapshot.quaternions.iter().enumerate())
+        .filter(|&(i, q)| state.quaternions[i] != *q)
+        .map(|(i, q)| (i, *q))
+        .collect();
+    state.set_orientations(&changed)
+}
+
+/// A clean state kept as the fallback result.
+pub(super) struct Snapshot {
+    pub scale: f64,
+    pub centres: Vec<[f64; 3]>,
+    pub quaternions: Vec<[f64; 4]>,
+}
+
+impl Snapshot {
+    pub(super) fn of(state: &State, scale: f64) -> Self {
+        Self {
+            scale,
+            centres: state.centres.clone(),
+            quaternions: state.quaternions.clone(),
+        }
+    }
+}
+
+/// Writes the snapshot out as packed grains (the grains themselves, not inflated by
+/// the gap) and checks it exactly, with the `gap`.
+/// `specs` and the state are in the loop's order: `order[k]` is the input index of the
+/// loop's grain `k`.
+pub(super) fn finish(
+    specs: &[GrainSpec],
+    order: &[usize],
+    state: &mut State,
+    snapshot: Snapshot,
+    stop: StopReason,
+    counters: Counters,
+    gap: f64,
+) -> Result<Packing, PackError> {
+    let scale = snapshot.scale;
+    state.centres = snapshot.centres;
+    state.wrap();
+    let mut grains = vec![None; specs.len()];
+    for (k, ((spec, c), q)) in specs
+        .iter()
+        .zip(&state.centres)
+        .zip(&snapshot.quaternions)
+        .enumerate()
+    {
+        grains[order[k]] = Some(PackedGrain::of_spec(order[k] as u32, spec, scale, *c, *q));
+    }
+    let grains: Vec<PackedGrain> = grains.into_iter().flatten().collect();
+    let verification = verify(&grains, &state.domain, gap)?;
+    let fraction = state.fraction(scale);
+    Ok(Packing {
+        grains,
+        scale,
+        fraction,
+        stop,
+        counters,
+        verification,
+    })
+}
