@@ -321,7 +321,7 @@ mod cell_list {
                             };
                             // (a, b, k) and (b, a, −k) are the same cell pair: keep one.
                             if a < b || (a == b && positive(k)) {
-                                tests += self.between(a, b, self.shape.shift(k), out);
+                                tests += self.between(a, b, k, out);
                             }
                         }
                     }
@@ -368,7 +368,7 @@ mod cell_list {
                         out.push(Pair {
                             i: self.ids[x],
                             j: self.ids[y],
-                            shift: [0.0; 3],
+                            image: [0; 3],
                         });
                     }
                 }
@@ -376,7 +376,9 @@ mod cell_list {
             (r.len() * r.len().saturating_sub(1) / 2) as u64
         }
 
-        fn between(&self, a: usize, b: usize, s: [f64; 3], out: &mut Vec<Pair>) -> u64 {
+        fn between(&self, a: usize, b: usize, k: [i32; 3], out: &mut Vec<Pair>) -> u64 {
+            let s = self.shape.shift(k);
+            let image = k.map(|x| x as i8);
             let ra = self.start[a] as usize..self.start[a + 1] as usize;
             let rb = self.start[b] as usize..self.start[b + 1] as usize;
             let minus_s = s.map(|x| 0.0 - x);
@@ -394,14 +396,14 @@ mod cell_list {
                             out.push(Pair {
                                 i: ix,
                                 j: iy,
-                                shift: s,
+                                image,
                             });
                         }
                     } else if spheres_intersect(cy, ry, cx, rx, minus_s) {
                         out.push(Pair {
                             i: iy,
                             j: ix,
-                            shift: minus_s,
+                            image: image.map(|x| -x),
                         });
                     }
                 }

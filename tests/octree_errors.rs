@@ -146,7 +146,7 @@ fn an_empty_scene_has_no_pairs() {
     let mut pairs = vec![grainpack::octree::Pair {
         i: 0,
         j: 1,
-        shift: [0.0; 3],
+        image: [0; 3],
     }];
     tree.pairs(&mut pairs);
     assert!(pairs.is_empty(), "the buffer is cleared");

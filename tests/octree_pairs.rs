@@ -174,7 +174,7 @@ fn reflecting_boxes_report_no_shift() {
     let mut pairs = Vec::new();
     tree.pairs(&mut pairs);
     assert!(!pairs.is_empty());
-    assert!(pairs.iter().all(|p| p.shift == [0.0; 3] && p.i < p.j));
+    assert!(pairs.iter().all(|p| p.image == [0; 3] && p.i < p.j));
 }
 
 #[test]

@@ -21,7 +21,7 @@ fn brute_force_2d(discs: &[Sphere], sides: [f64; 2], periodic: bool) -> Vec<Pair
                     let d = [0, 1].map(|k| q.centre[k] + shift[k] - p.centre[k]);
                     let reach = p.radius + q.radius;
                     if d[0] * d[0] + d[1] * d[1] <= reach * reach {
-                        keys.push((p.id, q.id, shift.map(f64::to_bits)));
+                        keys.push((p.id, q.id, [kx as i8, ky as i8, 0]));
                     }
                 }
             }

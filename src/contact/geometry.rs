@@ -3,7 +3,8 @@
 
 use super::direct::factor_between;
 use super::ldl::Ldl;
-use super::perram_wertheim::{lambda_and_complement, rank};
+use super::perram_wertheim::{contact_function_fast_factored, lambda_and_complement, rank};
+use super::prepared::PreparedEllipsoid;
 use super::scale::{exponent, pow2};
 use super::sym::{adjugate, dot, frobenius, polarised_adjugate, sym_mul};
 use super::{contact_function, contact_function_fast, Contact, ContactError, Sym3, Vec3, NEAR_END};
@@ -44,6 +45,33 @@ pub fn contact_geometry_fast(
     q2: &Sym3,
 ) -> Result<ContactGeometry, ContactError> {
     geometry_from(contact_function_fast(r12, q1, q2)?, r12, q1, q2)
+}
+
+/// [`contact_geometry_fast`] of two prepared shapes, reusing their factorisations:
+/// bit for bit the same answer for shapes made by [`PreparedEllipsoid::new`] (those of
+/// [`PreparedEllipsoid::scaled`] hold factors that may differ from a fresh
+/// factorisation by a rounding, and so may the answer's last digits).
+///
+/// ```
+/// use grainpack::contact::{contact_geometry_fast, contact_geometry_fast_prepared, Ellipsoid, PreparedEllipsoid};
+/// let e = Ellipsoid::new([2.0, 1.0, 0.5], [0.5, 0.5, 0.5, 0.5]).unwrap();
+/// let p = PreparedEllipsoid::new(&e).unwrap();
+/// let r = [1.5, 0.4, -0.3];
+/// assert_eq!(contact_geometry_fast_prepared(&r, &p, &p), contact_geometry_fast(&r, &e.q, &e.q));
+/// ```
+#[inline]
+pub fn contact_geometry_fast_prepared(
+    r12: &Vec3,
+    e1: &PreparedEllipsoid,
+    e2: &PreparedEllipsoid,
+) -> Result<ContactGeometry, ContactError> {
+    let (q1, q2) = (e1.q(), e2.q());
+    let c = if e1.unscaled & e2.unscaled {
+        contact_function_fast_factored(r12, q1, q2, (&e1.ldl, &e2.ldl))?
+    } else {
+        contact_function_fast(r12, q1, q2)?
+    };
+    geometry_from(c, r12, q1, q2)
 }
 
 /// Smallest `|s|` whose square is formed without underflow (`2^-500`, far above the

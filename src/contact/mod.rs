@@ -38,7 +38,9 @@ pub use ellipsoid::{
     QUATERNION_NORM_TOL,
 };
 pub use error::ContactError;
-pub use geometry::{contact_geometry, contact_geometry_fast, ContactGeometry};
+pub use geometry::{
+    contact_geometry, contact_geometry_fast, contact_geometry_fast_prepared, ContactGeometry,
+};
 pub use ldl::MIN_RELATIVE_PIVOT;
 pub use method::{Answer, Method, Timing, UnknownMethod};
 pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};

@@ -138,6 +138,14 @@ pub(crate) fn is_positive_image(k: [i32; 3]) -> bool {
     k[0] > 0 || (k[0] == 0 && (k[1] > 0 || (k[1] == 0 && k[2] > 0)))
 }
 
+/// Image `k` as a [`Pair`](super::Pair) stores it. The images tried are bounded by
+/// [`MAX_IMAGES_PER_AXIS`](super::MAX_IMAGES_PER_AXIS) (checked when a tree is built
+/// and by the brute-force reference's validation), far inside `i8`.
+#[inline]
+pub(crate) fn small_image(k: [i32; 3]) -> [i8; 3] {
+    k.map(|x| x as i8)
+}
+
 /// The integers `k` for which `k·l` may lie in `[lo, hi]`: `floor(lo/l) ..= ceil(hi/l)`.
 ///
 /// Rounding the quotients cannot drop a `k` (`floor` of the rounded `lo/l` never exceeds

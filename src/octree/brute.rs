@@ -1,6 +1,6 @@
 //! The O(n²) references the tests hold the octree to.
 
-use super::boundary::{image_range, is_positive_image, spheres_intersect};
+use super::boundary::{image_range, is_positive_image, small_image, spheres_intersect};
 use super::build::validate_input;
 use super::{BoxShape, Neighbour, OctreeError, Pair, Sphere};
 
@@ -39,7 +39,7 @@ pub fn brute_force_pairs(
                     out.push(Pair {
                         i: sa.id,
                         j: sa.id,
-                        shift: s,
+                        image: small_image(k),
                     });
                 }
             }
@@ -53,7 +53,7 @@ pub fn brute_force_pairs(
                     out.push(Pair {
                         i: si.id,
                         j: sj.id,
-                        shift: s,
+                        image: small_image(k),
                     });
                 }
             }

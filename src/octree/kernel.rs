@@ -164,7 +164,7 @@ impl<'a> View<'a> {
             out.push(Pair {
                 i: a.id.min(b),
                 j: a.id.max(b),
-                shift: [0.0; 3],
+                image: [0; 3],
             });
         });
     }
@@ -173,8 +173,14 @@ impl<'a> View<'a> {
     /// test runs with the lower id first, as
     /// [`brute_force_pairs`](super::brute_force_pairs) does: `(a, b, s)` with
     /// `id_a > id_b` is the pair `(b, a, −s)`, and `minus_s` must be `−s` computed as
-    /// `0 − s` (bit-identical to the shift of image `−k`).
-    pub fn shifted_pairs(&self, a: Probe, s: [f64; 3], minus_s: [f64; 3], out: &mut Vec<Pair>) {
+    /// `0 − s` (bit-identical to the shift of image `−k`); `image` is `k`.
+    pub fn shifted_pairs(
+        &self,
+        a: Probe,
+        (s, minus_s): ([f64; 3], [f64; 3]),
+        image: [i8; 3],
+        out: &mut Vec<Pair>,
+    ) {
         for k in 0..self.len() {
             let (c, r, b) = ([self.x[k], self.y[k], self.z[k]], self.r[k], self.id[k]);
             if a.id <= b {
@@ -182,14 +188,14 @@ impl<'a> View<'a> {
                     out.push(Pair {
                         i: a.id,
                         j: b,
-                        shift: s,
+                        image,
                     });
                 }
             } else if spheres_intersect(c, r, a.centre, a.radius, minus_s) {
                 out.push(Pair {
                     i: b,
                     j: a.id,
-                    shift: minus_s,
+                    image: image.map(|x| -x),
                 });
             }
         }

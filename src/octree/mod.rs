@@ -59,7 +59,8 @@
 //! let mut pairs = Vec::new();
 //! tree.pairs(&mut pairs);
 //! assert_eq!(pairs.len(), 1);
-//! assert_eq!((pairs[0].i, pairs[0].j, pairs[0].shift), (0, 1, [-10.0, 0.0, 0.0]));
+//! assert_eq!((pairs[0].i, pairs[0].j, pairs[0].image), (0, 1, [-1, 0, 0]));
+//! assert_eq!(pairs[0].shift(&shape), [-10.0, 0.0, 0.0]);
 //! ```
 
 mod boundary;
@@ -128,15 +129,27 @@ impl Sphere {
 /// A candidate pair: sphere `j` moved by `shift` meets sphere `i`.
 ///
 /// `i < j`, or `i == j` for a grain meeting its own periodic image (then `shift ≠ 0`).
-/// The narrow phase takes `r_ij = c_j + shift − c_i` with wrapped centres.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The narrow phase takes `r_ij = c_j + shift − c_i` with wrapped centres. Twelve
+/// bytes: a list of them is the largest array of a packing, so the shift is kept as
+/// the image it comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Pair {
     /// The lower id.
     pub i: u32,
     /// The higher id (or `i` itself for a self-image pair).
     pub j: u32,
-    /// Multiple of the box lengths that brings `j` next to `i`; zero in a walled box.
-    pub shift: [f64; 3],
+    /// The periodic image of `j` that meets `i`, in box lengths along each axis; zero in
+    /// a walled box. At most [`MAX_IMAGES_PER_AXIS`] + 1 in size.
+    pub image: [i8; 3],
+}
+
+impl Pair {
+    /// The multiple of the box lengths that brings `j` next to `i`:
+    /// [`BoxShape::shift`] of the image, bit for bit.
+    #[inline]
+    pub fn shift(&self, shape: &BoxShape) -> [f64; 3] {
+        shape.shift(self.image.map(i32::from))
+    }
 }
 
 /// A sphere met by a neighbour query: sphere `id` moved by `shift` meets the query.

@@ -1,6 +1,6 @@
 //! All intersecting pairs: a dual-tree walk, split into tasks for rayon.
 
-use super::boundary::{image_range, is_positive_image};
+use super::boundary::{image_range, is_positive_image, small_image};
 use super::{Octree, Pair};
 use rayon::prelude::*;
 use std::ops::Range;
@@ -175,10 +175,7 @@ impl Walker<'_> {
     fn run(&self, task: Task, sink: &mut Sink) {
         match task {
             Task::Within(a) => self.within(a as usize, sink),
-            Task::Between(a, b, k) => {
-                let s = self.tree.shape.shift(k);
-                self.between(a as usize, b as usize, s, sink);
-            }
+            Task::Between(a, b, k) => self.between(a as usize, b as usize, k, sink),
         }
     }
 
@@ -208,25 +205,26 @@ impl Walker<'_> {
         for c in children.clone() {
             self.within(c, sink);
             for d in c + 1..children.end {
-                self.between(c, d, [0.0; 3], sink);
+                self.between(c, d, [0; 3], sink);
             }
         }
     }
 
-    fn between(&self, a: usize, b: usize, s: [f64; 3], sink: &mut Sink) {
-        match self.descend(a, b, s, &mut sink.stats) {
+    /// All pairs of a sphere under node `a` with one under node `b` moved to image `k`.
+    fn between(&self, a: usize, b: usize, k: [i32; 3], sink: &mut Sink) {
+        match self.descend(a, b, self.tree.shape.shift(k), &mut sink.stats) {
             Descend::Apart => {}
             Descend::Leaves => {
-                self.leaf_between(a, b, s, sink);
+                self.leaf_between(a, b, k, sink);
             }
             Descend::First => {
                 for c in self.tree.nodes[a].children() {
-                    self.between(c, b, s, sink);
+                    self.between(c, b, k, sink);
                 }
             }
             Descend::Second => {
                 for c in self.tree.nodes[b].children() {
-                    self.between(a, c, s, sink);
+                    self.between(a, c, k, sink);
                 }
             }
         }
@@ -244,8 +242,9 @@ impl Walker<'_> {
 
     /// All pairs `(x, y + s)` with `x` in leaf `a` and `y` in leaf `b`; an `x` whose
     /// box misses `b`'s bounds (shifted, with the slack) is skipped.
-    fn leaf_between(&self, a: usize, b: usize, s: [f64; 3], sink: &mut Sink) {
+    fn leaf_between(&self, a: usize, b: usize, k: [i32; 3], sink: &mut Sink) {
         let t = self.tree;
+        let s = t.shape.shift(k);
         let (na, nb) = (&t.nodes[a], &t.nodes[b]);
         let ys = t.spheres.view(nb.range());
         // The same sums as `Aabb::overlaps_shifted`, hoisted out of the loop.
@@ -262,7 +261,7 @@ impl Walker<'_> {
             let minus_s = s.map(|x| 0.0 - x);
             xs.for_each_reaching(lo, hi, |x| {
                 sink.stats.sphere_tests += ys.len() as u64;
-                ys.shifted_pairs(xs.probe(x), s, minus_s, sink.out);
+                ys.shifted_pairs(xs.probe(x), (s, minus_s), small_image(k), sink.out);
             });
         }
     }

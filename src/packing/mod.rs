@@ -123,6 +123,7 @@ pub fn pack(
         },
         e => e,
     })?;
+    drop(sorted);
     state.centres = order.iter().map(|&k| centres[k]).collect();
     let mut run = Context {
         neighbours: Neighbours::new(tuning.neighbours),
@@ -264,14 +265,11 @@ pub fn pack(
             snapshot = turned_back;
         }
     }
+    // The loop's buffers go before the check builds its own.
+    let counters = run.counters;
+    drop((run, fire));
     finish(
-        &sorted,
-        &order,
-        &mut state,
-        snapshot,
-        reason,
-        run.counters,
-        params.gap,
+        specs, &order, &mut state, snapshot, reason, counters, params.gap,
     )
 }
 

@@ -4,7 +4,7 @@
 use super::state::State;
 use super::NeighbourParams;
 use super::PackError;
-use crate::octree::{Octree, Pair, Sphere};
+use crate::octree::{BoxShape, Octree, Pair, Sphere};
 
 /// The candidate pairs and what is needed to know when they go stale.
 pub(crate) struct Neighbours {
@@ -77,7 +77,7 @@ impl Neighbours {
 }
 
 /// `c_j + shift − c_i`.
-pub(crate) fn relative(centres: &[[f64; 3]], p: &Pair) -> [f64; 3] {
-    let (ci, cj) = (centres[p.i as usize], centres[p.j as usize]);
-    [0, 1, 2].map(|k| cj[k] + p.shift[k] - ci[k])
+pub(crate) fn relative(centres: &[[f64; 3]], p: &Pair, shape: &BoxShape) -> [f64; 3] {
+    let (ci, cj, shift) = (centres[p.i as usize], centres[p.j as usize], p.shift(shape));
+    [0, 1, 2].map(|k| cj[k] + shift[k] - ci[k])
 }

@@ -38,8 +38,8 @@ impl Snapshot {
 
 /// Writes the snapshot out as packed grains (the grains themselves, not inflated by
 /// the gap) and checks it exactly, with the `gap`.
-/// `specs` and the state are in the loop's order: `order[k]` is the input index of the
-/// loop's grain `k`.
+/// `specs` are in the input's order, the state in the loop's: `order[k]` is the input
+/// index of the loop's grain `k`.
 pub(super) fn finish(
     specs: &[GrainSpec],
     order: &[usize],
@@ -52,16 +52,17 @@ pub(super) fn finish(
     let scale = snapshot.scale;
     state.centres = snapshot.centres;
     state.wrap();
-    let mut grains = vec![None; specs.len()];
-    for (k, ((spec, c), q)) in specs
-        .iter()
-        .zip(&state.centres)
-        .zip(&snapshot.quaternions)
-        .enumerate()
-    {
-        grains[order[k]] = Some(PackedGrain::of_spec(order[k] as u32, spec, scale, *c, *q));
+    // In the input's order: the loop's grain k is input grain order[k].
+    let mut place = vec![0; specs.len()];
+    for (k, &input) in order.iter().enumerate() {
+        place[input] = k;
     }
-    let grains: Vec<PackedGrain> = grains.into_iter().flatten().collect();
+    let grains: Vec<PackedGrain> = (specs.iter().zip(place).enumerate())
+        .map(|(id, (spec, k))| {
+            let (c, q) = (state.centres[k], snapshot.quaternions[k]);
+            PackedGrain::of_spec(id as u32, spec, scale, c, q)
+        })
+        .collect();
     let verification = verify(&grains, &state.domain, gap)?;
     let fraction = state.fraction(scale);
     Ok(Packing {

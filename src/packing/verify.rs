@@ -52,7 +52,8 @@ pub fn verify(
             radius: r * (1.0 + MIN_GAP_REACH),
         })
         .collect();
-    let tree = Octree::build(&spheres, domain.box_shape()?, Params::default())?;
+    let shape = domain.box_shape()?;
+    let tree = Octree::build(&spheres, shape, Params::default())?;
     let mut pairs = Vec::new();
     tree.pairs(&mut pairs);
     let checked = |i: usize, j: usize, shift: [f64; 3]| {
@@ -70,7 +71,7 @@ pub fn verify(
         .filter(|p| p.i == p.j)
         .filter(|p| {
             let q = &shapes[p.i as usize].q;
-            contact_function(&p.shift, q, q).map_or(true, |c| c.mu2 < least_mu2)
+            contact_function(&p.shift(&shape), q, q).map_or(true, |c| c.mu2 < least_mu2)
         })
         .count();
     // μ² of every pair within reach, and whether it is a checked one.
@@ -80,11 +81,12 @@ pub fn verify(
         .map(|p| {
             let (i, j) = (p.i as usize, p.j as usize);
             let (ci, cj) = (grains[i].centre, grains[j].centre);
-            let r = [0, 1, 2].map(|k| cj[k] + p.shift[k] - ci[k]);
+            let shift = p.shift(&shape);
+            let r = [0, 1, 2].map(|k| cj[k] + shift[k] - ci[k]);
             // An error here (overflow) counts as an overlap: it is not a proof of
             // separation.
             let m = contact_function(&r, &shapes[i].q, &shapes[j].q).map_or(0.0, |c| c.mu2);
-            (m, checked(i, j, p.shift))
+            (m, checked(i, j, shift))
         })
         .collect();
     // Per grain of a walled box, the scale about its centre at which it would touch a

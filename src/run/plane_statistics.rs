@@ -154,7 +154,7 @@ impl PlaneStatistics {
         let mut pairs = Vec::new();
         tree.pairs(&mut pairs);
         // The slab's z images and a grain's own images are not neighbours in the plane.
-        pairs.retain(|p: &Pair| p.i != p.j && p.shift[2] == 0.0);
+        pairs.retain(|p: &Pair| p.i != p.j && p.image[2] == 0);
         let n = grains.len();
         let forms: Vec<Option<Sym3>> = grains
             .iter()
@@ -170,7 +170,8 @@ impl PlaneStatistics {
             .par_iter()
             .map(|p| {
                 let (i, j) = (p.i as usize, p.j as usize);
-                let r = [0, 1, 2].map(|k| centres[j][k] + p.shift[k] - centres[i][k]);
+                let shift = p.shift(&shape);
+                let r = [0, 1, 2].map(|k| centres[j][k] + shift[k] - centres[i][k]);
                 (r, pair_mu(forms[i].as_ref(), forms[j].as_ref(), r))
             })
             .collect();

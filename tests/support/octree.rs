@@ -4,11 +4,11 @@ use grainpack::octree::{brute_force_pairs, BoxShape, Octree, Pair, Params, Spher
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-/// A pair as an exactly comparable key: ids and the bit patterns of the shift.
-pub type PairKey = (u32, u32, [u64; 3]);
+/// A pair as an exactly comparable key: ids and the periodic image.
+pub type PairKey = (u32, u32, [i8; 3]);
 
 pub fn key(p: &Pair) -> PairKey {
-    (p.i, p.j, p.shift.map(f64::to_bits))
+    (p.i, p.j, p.image)
 }
 
 /// The pairs as a sorted list of keys, asserting that none repeats.

@@ -12,7 +12,7 @@
 use super::bernstein::{coefficients, Halley, Rational};
 use super::ldl::Ldl;
 use super::refine::{refined_ldl, Refined, Refiner};
-use super::scale::{needs_no_rescaling, Prepared};
+use super::scale::{needs_no_rescaling, offset_in_safe_range, Prepared};
 use super::sym::PencilParts;
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
 
@@ -73,6 +73,24 @@ pub const CORRECTOR_SWITCH_GAIN: f64 = 1e-4;
 /// ```
 pub fn contact_function_fast(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Contact, ContactError> {
     solve(r12, q1, q2, false)
+}
+
+/// [`contact_function_fast`] for forms already factored (`l1`, `l2` are
+/// `Ldl::factor` of `q1`, `q2`, whose diagonals need no rescaling): the same answer,
+/// bit for bit, without the two factorisations (the packing's prepared shapes keep
+/// them).
+#[inline]
+pub(crate) fn contact_function_fast_factored(
+    r12: &Vec3,
+    q1: &Sym3,
+    q2: &Sym3,
+    (l1, l2): (&Ldl, &Ldl),
+) -> Result<Contact, ContactError> {
+    if offset_in_safe_range(r12) && *r12 != [0.0; 3] {
+        let p = Prepared::unscaled(r12, q1, q2, *l1, *l2);
+        return solve_prepared(&p, Mode::Fast, (r12, q1, q2));
+    }
+    contact_function_fast(r12, q1, q2)
 }
 
 /// The Perram–Wertheim contact function μ² of two ellipsoids, and its maximiser λ.

@@ -16,7 +16,7 @@
 use super::grains::turn_angle;
 use super::neighbours::relative;
 use super::state::State;
-use crate::contact::{contact_geometry_fast, dot, ContactGeometry, PreparedEllipsoid};
+use crate::contact::{contact_geometry_fast_prepared, dot, ContactGeometry, PreparedEllipsoid};
 use crate::octree::Pair;
 use crate::scene::Boundary;
 use rayon::prelude::*;
@@ -40,12 +40,13 @@ pub(crate) struct Forces {
     pub wall_hits: usize,
     /// Pairs the narrow phase tested.
     pub tested: u64,
-    /// The overlapping pairs (index into the pair list) and what they contribute, in
-    /// pair order.
-    hits: Vec<(usize, PairForce)>,
-    /// Per candidate pair: a lower bound on μ₁, and the pair's travel and sweep when
-    /// it was taken; valid until the list is rebuilt.
-    bounds: Vec<(f64, f64, f64)>,
+    /// The overlapping pairs of one chunk of the pair list and what they contribute,
+    /// in pair order.
+    hits: Vec<(u32, u32, PairForce)>,
+    /// Per candidate pair: how far its grains may still move before it must be tested
+    /// again, as a bound on the sum of their [`motion`](Self::motion) (rounded down);
+    /// valid until the list is rebuilt or the scale changes (see [`BOUND_SLACK`]).
+    allowance: Vec<f32>,
     /// Distance each grain has moved since the list was built, summed step by step,
     /// and where it was at the last evaluation.
     travel: Vec<f64>,
@@ -55,6 +56,12 @@ pub(crate) struct Forces {
     /// and its orientation at the last evaluation.
     sweep: Vec<f64>,
     last_turn: Vec<[f64; 4]>,
+    /// Each grain's travel plus the skip threshold times its sweep: what the
+    /// allowances are spent in.
+    motion: Vec<f64>,
+    /// The skip threshold the allowances were made for, and whether turns counted.
+    skip_above: f64,
+    turning: bool,
     /// The list build the bounds refer to.
     build: u64,
 }
@@ -67,7 +74,10 @@ pub(crate) struct Forces {
 /// total keep `K` inside `K ⊕ B(h) ⊆ (1 + h/ρ) K`, which divides the bound by
 /// `1 + h/ρ`. A pair is skipped while that bound exceeds `S (1 + BOUND_SLACK)`; the
 /// slack covers the fast contact function's error (≤ 1e-8 relative even on the extreme
-/// reference set) with room to spare.
+/// reference set) with room to spare. Multiplied out, with `T = S (1 + BOUND_SLACK)`:
+/// the pair is skipped while `t' + T h' ≤ (m − T) ρ + t + T h`, its grains' motions
+/// (travel plus `T` times sweep) summed now against then, which is what each pair
+/// stores (its allowance, in `f32` rounded down: a pair is only ever tested sooner).
 pub const BOUND_SLACK: f64 = 1e-6;
 
 /// Added to every turn angle in the sweep of [`BOUND_SLACK`]'s bound, for the rounding
@@ -101,104 +111,120 @@ impl Forces {
         self.force.clear();
         self.force.resize(n, [0.0; 3]);
         self.torque.clear();
-        self.torque.resize(n, [0.0; 3]);
-        self.hits.clear();
-        if build != self.build || self.bounds.len() != pairs.len() {
-            self.build = build;
-            self.bounds.clear();
-            self.bounds.resize(pairs.len(), (0.0, 0.0, 0.0));
+        if torques {
+            self.torque.resize(n, [0.0; 3]);
+        }
+        let skip_above = big_s * (1.0 + BOUND_SLACK);
+        let fresh = build != self.build
+            || self.allowance.len() != pairs.len()
+            || skip_above != self.skip_above
+            || torques != self.turning;
+        if fresh {
+            (self.build, self.skip_above, self.turning) = (build, skip_above, torques);
+            self.allowance.clear();
+            self.allowance.resize(pairs.len(), f32::NEG_INFINITY);
             self.travel.clear();
             self.travel.resize(n, 0.0);
             self.last.clone_from(&state.centres);
             self.sweep.clear();
             self.sweep.resize(n, 0.0);
-            self.last_turn.clone_from(&state.quaternions);
-        } else {
-            for ((t, a), b) in self
-                .travel
-                .iter_mut()
-                .zip(&mut self.last)
-                .zip(&state.centres)
-            {
-                *t +=
-                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-                *a = *b;
-            }
             if torques {
-                for (((h, a), b), e) in self
-                    .sweep
-                    .iter_mut()
-                    .zip(&mut self.last_turn)
-                    .zip(&state.quaternions)
-                    .zip(&state.shapes)
-                {
-                    if a != b {
-                        *h += (turn_angle(*a, *b) + TURN_ROUNDING) * e.bounding_radius();
-                        *a = *b;
+                self.last_turn.clone_from(&state.quaternions);
+            }
+        } else {
+            self.advance(state, torques);
+        }
+        self.motion.clear();
+        if torques {
+            let motion = self.travel.iter().zip(&self.sweep);
+            self.motion.extend(motion.map(|(t, h)| t + skip_above * h));
+        } else {
+            self.motion.extend_from_slice(&self.travel);
+        }
+        let (centres, shapes, motion) = (&state.centres, &state.shapes, &self.motion);
+        let (round, axes, shape) = (&state.round, &state.axes, &state.box_shape);
+        let tested = AtomicU64::new(0);
+        (self.energy, self.overlaps, self.min_mu1) = (0.0, 0, f64::INFINITY);
+        let chunks = pairs.chunks(CHUNK).zip(self.allowance.chunks_mut(CHUNK));
+        for (pairs, allowance) in chunks {
+            let found = pairs
+                .par_iter()
+                .zip(allowance.par_iter_mut())
+                .with_min_len(PAIRS_PER_TASK)
+                .filter_map(|(p, allowance)| {
+                    let (i, j) = (p.i as usize, p.j as usize);
+                    let spent = motion[i] + motion[j];
+                    if spent <= f64::from(*allowance) {
+                        return None;
+                    }
+                    tested.fetch_add(1, Ordering::Relaxed);
+                    let (ei, ej) = (&shapes[i], &shapes[j]);
+                    let inner = ei.inscribed_radius() + ej.inscribed_radius();
+                    let mut allow =
+                        |m: f64| *allowance = round_down((m - skip_above) * inner + spent);
+                    let r = relative(centres, p, shape);
+                    // The gauge of a body inside the ball of radius b_i + b_j is at least
+                    // |r| / (b_i + b_j).
+                    let outer = ei.bounding_radius() + ej.bounding_radius();
+                    let far = dot(&r, &r).sqrt() / outer;
+                    if far >= skip_above {
+                        allow(far);
+                        return None;
+                    }
+                    let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
+                    let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
+                    allow(mu1);
+                    force.map(|f| (p.i, p.j, f))
+                });
+            // Collected in pair order whatever the threads (rayon keeps the order).
+            self.hits.clear();
+            self.hits.par_extend(found);
+            for &(i, j, h) in &self.hits {
+                let (i, j) = (i as usize, j as usize);
+                self.overlaps += 1;
+                self.min_mu1 = self.min_mu1.min(h.mu1);
+                self.energy += h.energy;
+                for k in 0..3 {
+                    self.force[i][k] -= h.force[k];
+                    self.force[j][k] += h.force[k];
+                }
+                if torques {
+                    for k in 0..3 {
+                        self.torque[i][k] += h.torque_i[k];
+                        self.torque[j][k] += h.torque_j[k];
                     }
                 }
             }
         }
-        let (centres, shapes, travel) = (&state.centres, &state.shapes, &self.travel);
-        let sweep = &self.sweep;
-        let (round, axes) = (&state.round, &state.axes);
-        let skip_above = big_s * (1.0 + BOUND_SLACK);
-        let tested = AtomicU64::new(0);
-        let found = pairs
-            .par_iter()
-            .zip(self.bounds.par_iter_mut())
-            .enumerate()
-            .with_min_len(PAIRS_PER_TASK)
-            .filter_map(|(index, (p, bound))| {
-                let (i, j) = (p.i as usize, p.j as usize);
-                let (ei, ej) = (&shapes[i], &shapes[j]);
-                let (moved, swept) = (travel[i] + travel[j], sweep[i] + sweep[j]);
-                let inner = ei.inscribed_radius() + ej.inscribed_radius();
-                let shifted = bound.0 - (moved - bound.1) / inner;
-                if shifted >= skip_above * (1.0 + (swept - bound.2) / inner) {
-                    return None;
-                }
-                tested.fetch_add(1, Ordering::Relaxed);
-                let r = relative(centres, p);
-                // The gauge of a body inside the ball of radius b_i + b_j is at least
-                // |r| / (b_i + b_j).
-                let outer = ei.bounding_radius() + ej.bounding_radius();
-                let far = dot(&r, &r).sqrt() / outer;
-                if far >= skip_above {
-                    *bound = (far, moved, swept);
-                    return None;
-                }
-                let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
-                let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
-                *bound = (mu1, moved, swept);
-                force.map(|f| (index, f))
-            });
-        // Collected in pair order whatever the threads (rayon keeps the order).
-        self.hits.par_extend(found);
         self.tested = tested.into_inner();
-        self.energy = 0.0;
-        self.overlaps = 0;
-        self.min_mu1 = f64::INFINITY;
-        for (index, h) in &self.hits {
-            let p = &pairs[*index];
-            let (i, j) = (p.i as usize, p.j as usize);
-            self.overlaps += 1;
-            self.min_mu1 = self.min_mu1.min(h.mu1);
-            self.energy += h.energy;
-            for k in 0..3 {
-                self.force[i][k] -= h.force[k];
-                self.force[j][k] += h.force[k];
-            }
-            if torques {
-                for k in 0..3 {
-                    self.torque[i][k] += h.torque_i[k];
-                    self.torque[j][k] += h.torque_j[k];
-                }
-            }
-        }
         self.wall_hits = 0;
         if state.domain.boundary == Boundary::Reflecting {
             self.walls(state, big_s, torques);
+        }
+    }
+
+    /// Adds each grain's move (and sweep, when grains turn) since the last evaluation.
+    fn advance(&mut self, state: &State, torques: bool) {
+        for ((t, a), b) in self
+            .travel
+            .iter_mut()
+            .zip(&mut self.last)
+            .zip(&state.centres)
+        {
+            *t += ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            *a = *b;
+        }
+        if torques {
+            for (((h, a), b), e) in (self.sweep.iter_mut())
+                .zip(&mut self.last_turn)
+                .zip(&state.quaternions)
+                .zip(&state.shapes)
+            {
+                if a != b {
+                    *h += (turn_angle(*a, *b) + TURN_ROUNDING) * e.bounding_radius();
+                    *a = *b;
+                }
+            }
         }
     }
 
@@ -257,7 +283,7 @@ fn pair_force(
     let g = if let Some((ri, rj)) = radii {
         sphere_geometry(r, ri, rj)
     } else {
-        contact_geometry_fast(r, ei.q(), ej.q()).ok()
+        contact_geometry_fast_prepared(r, ei, ej).ok()
     };
     let Some(g) = g.filter(|g| g.mu2.is_finite()) else {
         // Coincident centres (or a pair the contact function cannot handle, which
@@ -324,6 +350,20 @@ pub(crate) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
         a[0] * b[1] - a[1] * b[0],
     ]
 }
+
+/// `x` in `f32`, rounded down: an allowance never grows by its rounding.
+fn round_down(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) > x {
+        y.next_down()
+    } else {
+        y
+    }
+}
+
+/// Pairs evaluated before their forces are added up: bounds the memory of the
+/// overlapping pairs' contributions (about 100 bytes each) whatever the scene's size.
+const CHUNK: usize = 1 << 18;
 
 /// Pairs one rayon task takes at least: one pair is a single contact-function call, too
 /// little work to be worth a task of its own.

@@ -38,7 +38,7 @@ fn two_grains(domain: &Domain) -> State {
 const PAIR: [Pair; 1] = [Pair {
     i: 0,
     j: 1,
-    shift: [0.0; 3],
+    image: [0; 3],
 }];
 
 fn energy(state: &State, big_s: f64) -> f64 {
