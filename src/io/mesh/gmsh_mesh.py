@@ -15,7 +15,8 @@ grain clears the box faces by a margin (thin caps mesh badly);
 opposite faces paired by centre of mass and area, then setPeriodic; HXT for the
 volume; a retry with curvature-driven sizes when gmsh's periodic copy of a curve fails;
 periodic nodes paired by coordinates and snapped exactly onto their images plus the
-box length.
+box length; for quadratic elements, the middle nodes added to this linear mesh
+afterwards and made periodic in turn (mesh_quadratic.py).
 """
 
 import json
@@ -24,8 +25,9 @@ import time
 
 from mesh_common import MeshError
 from mesh_geometry import build_geometry, half_extents, make_periodic, window
-from mesh_nodes import (TET10_ORDER, check_faces, extract, group_by_grain, mid_images,
-                        number_nodes, pair_by_coordinates, snap, tet_volume)
+from mesh_nodes import (check_faces, extract, group_by_grain, number_nodes,
+                        pair_by_coordinates, snap, tet_volume)
+from mesh_quadratic import elevate
 from mesh_plane import mesh_plane
 from mesh_write import finish
 
@@ -74,45 +76,33 @@ def mesh(gmsh, job):
     geometry_seconds = time.monotonic() - started
     gmsh.option.setNumber("Mesh.MeshSizeMax", job["element_size"])
     gmsh.option.setNumber("Mesh.Algorithm3D", 10)
-    gmsh.option.setNumber("Mesh.ElementOrder", job["order"])
-    gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-    # Middle nodes moved onto the curved surfaces invert some thin elements (3 of 12k
-    # seen): gmsh's elastic-and-optimisation pass untangles them.
-    gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
+    # Linear first, quadratic after the periodic snapping (mesh_quadratic.py).
+    gmsh.option.setNumber("Mesh.ElementOrder", 1)
     gmsh.logger.start()
     retried = generate(gmsh, job)
-    pieces = extract(gmsh, volumes, job["order"])
+    pieces = extract(gmsh, volumes, 1)
     new, coords = number_nodes(gmsh, pieces, origin)
-    images = {}
+    pieces = [(grain, tags, [[new[n] for n in e] for e in conn]) for grain, tags, conn in pieces]
+    images, worst, straightened = {}, 0.0, 0
     if job["periodic"]:
-        # The vertices by coordinates; the middle nodes of quadratic elements, which
-        # gmsh's high-order optimisation moves on each side alike but not exactly,
-        # by their edges (mid_images).
-        vertices = {new[n] for _, _, conn in pieces for e in conn for n in e[:4]}
-        images = pair_by_coordinates({n: coords[n] for n in vertices}, origin, size)
+        images = pair_by_coordinates(coords, origin, size)
         worst = snap(gmsh, coords, images, size)
-        if job["order"] == 2:
-            conns = [[new[n] for n in e] for _, _, conn in pieces for e in conn]
-            conns = [[e[i] for i in TET10_ORDER] for e in conns]
-            middles = mid_images(conns, coords, images, origin, size)
-            worst = snap(gmsh, coords, middles, size, worst)
-            images.update(middles)
+    if job["order"] == 2:
+        pieces, coords, images, mid_worst, straightened = elevate(
+            gmsh, volumes, origin, size, coords, images, job["periodic"])
+        worst = max(worst, mid_worst)
+    if job["periodic"]:
         check_faces(coords, images, origin, size)
-    else:
-        worst = 0.0
     mesh_seconds = time.monotonic() - started - geometry_seconds
     elements = []
-    npe = 4 if job["order"] == 1 else 10
     for grain, tags, conn in pieces:
         quality = gmsh.model.mesh.getElementQualities(tags, "minSICN")
-        for e, q in zip(conn, quality):
-            nodes = [new[n] for n in e]
-            if npe == 10:
-                nodes = [nodes[i] for i in TET10_ORDER]
+        for nodes, q in zip(conn, quality):
             vol = tet_volume([coords[n] for n in nodes[:4]])
             elements.append((grain, nodes, float(q), vol))
     report = {"geometry_seconds": geometry_seconds, "mesh_seconds": mesh_seconds,
-              "retried": retried, "margins": margins, "pairs": pairs, "worst": worst}
+              "retried": retried, "margins": margins, "pairs": pairs, "worst": worst,
+              "straightened": straightened}
     return finish(gmsh, job, coords, elements, images, origin, report)
 
 
