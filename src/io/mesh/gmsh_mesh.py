@@ -20,6 +20,7 @@ afterwards and made periodic in turn (mesh_quadratic.py).
 """
 
 import json
+import re
 import sys
 import time
 
@@ -37,23 +38,45 @@ EXIT_MESH_FAILED = 3
 RETRY_CURVATURE = 24
 
 
-def generate(gmsh, job):
+def where(gmsh, volumes):
+    """The surfaces gmsh's log blames (invalid elements, periodic copies), each with the
+    grains (or the matrix) on its sides: for the message of a failed mesh."""
+    found = []
+    for line in gmsh.logger.get():
+        for tag in re.findall(r"surface (\d+)", line):
+            if ("rror" in line or "invalid" in line) and int(tag) not in found:
+                found.append(int(tag))
+    parts = []
+    for tag in found[-4:]:
+        try:
+            up, _ = gmsh.model.getAdjacencies(2, tag)
+        except Exception:  # gmsh raises plain Exception
+            continue
+        sides = ["the matrix" if volumes.get(int(v)) is None
+                 else f"grain {volumes[int(v)]['id']}" for v in up]
+        parts.append(f"surface {tag} (of {' and '.join(sides)})")
+    return "; gmsh's log blames " + ", ".join(parts) if parts else ""
+
+
+def generate(gmsh, volumes):
     """Meshes in 3D; on gmsh's failure of a periodic curve copy, once more with sizes
-    from curvature. Returns the retry flag."""
+    from curvature. Returns the retry flag. A failure names gmsh's message and the
+    surfaces its log blames (`where`)."""
     try:
         gmsh.model.mesh.generate(3)
         return False
     except Exception as first:  # gmsh raises plain Exception
         text = str(first) + " " + " ".join(gmsh.logger.get()[-20:])
         if "correspondant" not in text and "corresponding" not in text:
-            raise MeshError(str(first)) from None
+            raise MeshError(f"{first}{where(gmsh, volumes)}") from None
         gmsh.model.mesh.clear()
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", RETRY_CURVATURE)
         try:
             gmsh.model.mesh.generate(3)
         except Exception as second:
             raise MeshError(f"{second} (after a retry with Mesh.MeshSizeFromCurvature = "
-                            f"{RETRY_CURVATURE}; first: {first})") from None
+                            f"{RETRY_CURVATURE}; first: {first}){where(gmsh, volumes)}"
+                            ) from None
         return True
 
 
@@ -79,7 +102,7 @@ def mesh(gmsh, job):
     # Linear first, quadratic after the periodic snapping (mesh_quadratic.py).
     gmsh.option.setNumber("Mesh.ElementOrder", 1)
     gmsh.logger.start()
-    retried = generate(gmsh, job)
+    retried = generate(gmsh, volumes)
     pieces = extract(gmsh, volumes, 1)
     new, coords = number_nodes(gmsh, pieces, origin)
     pieces = [(grain, tags, [[new[n] for n in e] for e in conn]) for grain, tags, conn in pieces]
