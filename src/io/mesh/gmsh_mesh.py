@@ -13,7 +13,8 @@ images of the grains crossing the box cut to it and fragmented with it, the othe
 holes of the matrix (build_geometry); the packing's window is shifted so every
 grain clears the box faces by a margin (thin caps mesh badly);
 opposite faces paired by centre of mass and area, then setPeriodic; HXT for the
-volume; a retry with curvature-driven sizes when gmsh's periodic copy of a curve fails;
+volume; when gmsh fails, a second attempt on the geometry rebuilt, with sizes from
+curvature;
 periodic nodes paired by coordinates and snapped exactly onto their images plus the
 box length; for quadratic elements, the middle nodes added to this linear mesh
 afterwards and made periodic in turn (mesh_quadratic.py).
@@ -34,15 +35,18 @@ from mesh_write import finish
 
 # Exit code for "gmsh could not mesh this packing" (pack maps it to its message).
 EXIT_MESH_FAILED = 3
-# Curvature-driven sizing used on the retry (elements per 2 pi of curvature).
-RETRY_CURVATURE = 24
+# Sizes from curvature (elements per 2 pi of curvature) of the second attempt: small cut
+# curves (thin caps, at 500 grains) get short elements; an ellipsoid's own curvature
+# (radius ~1.5 at the default size 0.75) barely changes.
+RETRY_CURVATURE = 12
 
 
-def where(gmsh, volumes):
-    """The surfaces gmsh's log blames (invalid elements, periodic copies), each with the
-    grains (or the matrix) on its sides: for the message of a failed mesh."""
+def where(gmsh, volumes, since=0):
+    """The surfaces gmsh's log (from line `since`) blames (invalid elements, periodic
+    copies), each with the grains (or the matrix) on its sides: for the message of a
+    failed mesh."""
     found = []
-    for line in gmsh.logger.get():
+    for line in gmsh.logger.get()[since:]:
         for tag in re.findall(r"surface (\d+)", line):
             if ("rror" in line or "invalid" in line) and int(tag) not in found:
                 found.append(int(tag))
@@ -58,26 +62,45 @@ def where(gmsh, volumes):
     return "; gmsh's log blames " + ", ".join(parts) if parts else ""
 
 
-def generate(gmsh, volumes):
-    """Meshes in 3D; on gmsh's failure of a periodic curve copy, once more with sizes
-    from curvature. Returns the retry flag. A failure names gmsh's message and the
-    surfaces its log blames (`where`)."""
+def model(gmsh, job, origin):
+    """The geometry in a new gmsh model, its face pieces paired and its volumes in
+    physical groups per grain: (volumes, pairs)."""
+    gmsh.model.add("grainpack")
+    # OCC's default (build_geometry turns it off for the matrix, after the grains).
+    gmsh.option.setNumber("Geometry.OCCAutoFix", 1)
+    volumes = build_geometry(gmsh, job, origin)
+    pairs = make_periodic(gmsh, origin, job["box"]) if job["periodic"] else 0
+    for gid, tags in group_by_grain(volumes).items():
+        p = gmsh.model.addPhysicalGroup(3, tags)
+        gmsh.model.setPhysicalName(3, p, "matrix" if gid is None else f"grain_{gid}")
+    return volumes, pairs
+
+
+def generate(gmsh, job, origin, volumes):
+    """Meshes in 3D. When gmsh fails (HXT refusing a surface mesh with invalid
+    triangles, a periodic curve meshed differently on its two sides), once more on the
+    geometry rebuilt in a new model (after a failure, gmsh's mesh.clear() and a second
+    generate gave no elements), with sizes from curvature. Returns (volumes, whether
+    the second attempt was needed, its geometry seconds). A failure of both names
+    gmsh's messages and the surfaces its log blames (`where`)."""
     try:
         gmsh.model.mesh.generate(3)
-        return False
-    except Exception as first:  # gmsh raises plain Exception
-        text = str(first) + " " + " ".join(gmsh.logger.get()[-20:])
-        if "correspondant" not in text and "corresponding" not in text:
-            raise MeshError(f"{first}{where(gmsh, volumes)}") from None
-        gmsh.model.mesh.clear()
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", RETRY_CURVATURE)
-        try:
-            gmsh.model.mesh.generate(3)
-        except Exception as second:
-            raise MeshError(f"{second} (after a retry with Mesh.MeshSizeFromCurvature = "
-                            f"{RETRY_CURVATURE}; first: {first}){where(gmsh, volumes)}"
-                            ) from None
-        return True
+        return volumes, False, 0.0
+    except Exception as e:  # gmsh raises plain Exception
+        first = f"{e}{where(gmsh, volumes)}"
+    gmsh.model.remove()
+    started = time.monotonic()
+    volumes, _ = model(gmsh, job, origin)
+    rebuilt = time.monotonic() - started
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", RETRY_CURVATURE)
+    since = len(gmsh.logger.get())
+    try:
+        gmsh.model.mesh.generate(3)
+    except Exception as second:
+        raise MeshError(f"{second}{where(gmsh, volumes, since)} (in a second attempt with "
+                        f"Mesh.MeshSizeFromCurvature = {RETRY_CURVATURE}; the first: "
+                        f"{first})") from None
+    return volumes, True, rebuilt
 
 
 def mesh(gmsh, job):
@@ -90,19 +113,15 @@ def mesh(gmsh, job):
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.option.setNumber("General.NumThreads", job["threads"])
     gmsh.option.setNumber("Geometry.OCCParallel", 1)
-    gmsh.model.add("grainpack")
-    volumes = build_geometry(gmsh, job, origin)
-    pairs = make_periodic(gmsh, origin, size) if job["periodic"] else 0
-    for gid, tags in group_by_grain(volumes).items():
-        p = gmsh.model.addPhysicalGroup(3, tags)
-        gmsh.model.setPhysicalName(3, p, "matrix" if gid is None else f"grain_{gid}")
+    volumes, pairs = model(gmsh, job, origin)
     geometry_seconds = time.monotonic() - started
     gmsh.option.setNumber("Mesh.MeshSizeMax", job["element_size"])
     gmsh.option.setNumber("Mesh.Algorithm3D", 10)
     # Linear first, quadratic after the periodic snapping (mesh_quadratic.py).
     gmsh.option.setNumber("Mesh.ElementOrder", 1)
     gmsh.logger.start()
-    retried = generate(gmsh, volumes)
+    volumes, retried, rebuilt = generate(gmsh, job, origin, volumes)
+    geometry_seconds += rebuilt
     pieces = extract(gmsh, volumes, 1)
     new, coords = number_nodes(gmsh, pieces, origin)
     pieces = [(grain, tags, [[new[n] for n in e] for e in conn]) for grain, tags, conn in pieces]

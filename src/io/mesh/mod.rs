@@ -115,8 +115,9 @@ pub struct MeshStats {
     pub geometry_seconds: f64,
     /// Seconds to mesh it (surfaces, volumes, periodic snapping).
     pub mesh_seconds: f64,
-    /// Whether the first attempt failed on a periodic curve and the retry with sizes
-    /// from curvature was needed.
+    /// Whether gmsh's first attempt failed and the mesh is the second one's: the
+    /// geometry rebuilt in a new model, with sizes from curvature (its seconds count in
+    /// `geometry_seconds`).
     pub retried_with_curvature: bool,
     /// Lower corner of the meshed window of the periodic packing (two coordinates in
     /// 2D, where the mesh lies in the plane z = 0).
