@@ -41,12 +41,12 @@ EXIT_MESH_FAILED = 3
 RETRY_CURVATURE = 12
 
 
-def where(gmsh, volumes, since=0):
-    """The surfaces gmsh's log (from line `since`) blames (invalid elements, periodic
+def where(gmsh, volumes):
+    """The surfaces gmsh's log blames (invalid elements, periodic
     copies), each with the grains (or the matrix) on its sides: for the message of a
     failed mesh."""
     found = []
-    for line in gmsh.logger.get()[since:]:
+    for line in gmsh.logger.get():
         for tag in re.findall(r"surface (\d+)", line):
             if ("rror" in line or "invalid" in line) and int(tag) not in found:
                 found.append(int(tag))
@@ -62,12 +62,32 @@ def where(gmsh, volumes, since=0):
     return "; gmsh's log blames " + ", ".join(parts) if parts else ""
 
 
+def configure(gmsh, job):
+    """gmsh's options for a 3D job, and its log started."""
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.option.setNumber("General.NumThreads", job["threads"])
+    gmsh.option.setNumber("Geometry.OCCParallel", 1)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", job["element_size"])
+    gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+    # Linear first, quadratic after the periodic snapping (mesh_quadratic.py).
+    gmsh.option.setNumber("Mesh.ElementOrder", 1)
+    gmsh.logger.start()
+
+
+def tetrahedra(gmsh):
+    """gmsh's 3D mesh; one without an element is a failure (gmsh's generate returned
+    without an exception and without elements after an HXT failure)."""
+    gmsh.model.mesh.generate(3)
+    types, tags, _ = gmsh.model.mesh.getElements(3)
+    if not any(len(t) for t in tags):
+        log = [line for line in gmsh.logger.get() if "rror" in line][-2:]
+        raise Exception("gmsh returned no elements" + (": " + "; ".join(log) if log else ""))
+
+
 def model(gmsh, job, origin):
     """The geometry in a new gmsh model, its face pieces paired and its volumes in
     physical groups per grain: (volumes, pairs)."""
     gmsh.model.add("grainpack")
-    # OCC's default (build_geometry turns it off for the matrix, after the grains).
-    gmsh.option.setNumber("Geometry.OCCAutoFix", 1)
     volumes = build_geometry(gmsh, job, origin)
     pairs = make_periodic(gmsh, origin, job["box"]) if job["periodic"] else 0
     for gid, tags in group_by_grain(volumes).items():
@@ -78,26 +98,28 @@ def model(gmsh, job, origin):
 
 def generate(gmsh, job, origin, volumes):
     """Meshes in 3D. When gmsh fails (HXT refusing a surface mesh with invalid
-    triangles, a periodic curve meshed differently on its two sides), once more on the
-    geometry rebuilt in a new model (after a failure, gmsh's mesh.clear() and a second
-    generate gave no elements), with sizes from curvature. Returns (volumes, whether
-    the second attempt was needed, its geometry seconds). A failure of both names
-    gmsh's messages and the surfaces its log blames (`where`)."""
+    triangles, a periodic curve meshed differently on its two sides), once more in a
+    new gmsh session on the geometry rebuilt, with sizes from curvature (in the same
+    session, after a failure, gmsh's mesh.clear() and a second generate, or a new
+    model, gave no elements). Returns (volumes, whether the second attempt was
+    needed, its geometry seconds). A failure of both names gmsh's messages and the
+    surfaces its log blames (`where`)."""
     try:
-        gmsh.model.mesh.generate(3)
+        tetrahedra(gmsh)
         return volumes, False, 0.0
     except Exception as e:  # gmsh raises plain Exception
         first = f"{e}{where(gmsh, volumes)}"
-    gmsh.model.remove()
+    gmsh.finalize()
+    gmsh.initialize(["grainpack"], readConfigFiles=False)
+    configure(gmsh, job)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", RETRY_CURVATURE)
     started = time.monotonic()
     volumes, _ = model(gmsh, job, origin)
     rebuilt = time.monotonic() - started
-    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", RETRY_CURVATURE)
-    since = len(gmsh.logger.get())
     try:
-        gmsh.model.mesh.generate(3)
+        tetrahedra(gmsh)
     except Exception as second:
-        raise MeshError(f"{second}{where(gmsh, volumes, since)} (in a second attempt with "
+        raise MeshError(f"{second}{where(gmsh, volumes)} (in a second attempt with "
                         f"Mesh.MeshSizeFromCurvature = {RETRY_CURVATURE}; the first: "
                         f"{first})") from None
     return volumes, True, rebuilt
@@ -110,16 +132,9 @@ def mesh(gmsh, job):
         g["extent"] = half_extents(g)
     started = time.monotonic()
     origin, margins = window(job)
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.option.setNumber("General.NumThreads", job["threads"])
-    gmsh.option.setNumber("Geometry.OCCParallel", 1)
+    configure(gmsh, job)
     volumes, pairs = model(gmsh, job, origin)
     geometry_seconds = time.monotonic() - started
-    gmsh.option.setNumber("Mesh.MeshSizeMax", job["element_size"])
-    gmsh.option.setNumber("Mesh.Algorithm3D", 10)
-    # Linear first, quadratic after the periodic snapping (mesh_quadratic.py).
-    gmsh.option.setNumber("Mesh.ElementOrder", 1)
-    gmsh.logger.start()
     volumes, retried, rebuilt = generate(gmsh, job, origin, volumes)
     geometry_seconds += rebuilt
     pieces = extract(gmsh, volumes, 1)
