@@ -36,8 +36,8 @@ from mesh_write import finish
 # Exit code for "gmsh could not mesh this packing" (pack maps it to its message).
 EXIT_MESH_FAILED = 3
 # Sizes from curvature (elements per 2 pi of curvature) of the second attempt: small cut
-# curves (thin caps, at 500 grains) get short elements; an ellipsoid's own curvature
-# (radius ~1.5 at the default size 0.75) barely changes.
+# curves (thin caps, at 500 grains) get short elements, and so do the grains' most
+# curved parts (1.8x the tetrahedra on tools/check_mesh.py's composite).
 RETRY_CURVATURE = 12
 
 

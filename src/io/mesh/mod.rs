@@ -116,8 +116,8 @@ pub struct MeshStats {
     /// Seconds to mesh it (surfaces, volumes, periodic snapping).
     pub mesh_seconds: f64,
     /// Whether gmsh's first attempt failed and the mesh is the second one's: the
-    /// geometry rebuilt in a new model, with sizes from curvature (its seconds count in
-    /// `geometry_seconds`).
+    /// geometry rebuilt in a new gmsh session, with sizes from curvature (its seconds
+    /// count in `geometry_seconds`).
     pub retried_with_curvature: bool,
     /// Lower corner of the meshed window of the periodic packing (two coordinates in
     /// 2D, where the mesh lies in the plane z = 0).
