@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Measurements of the conforming mesh for BENCHMARKS.md ("Conforming mesh ...").
 
-    python tools/bench_mesh.py scale [--grains 50 200] [--fractions 0.3 0.5] \
+    python tools/bench_mesh.py scale [--grains 50 200] [--fractions 0.3 0.5] [--order 1] \
         [--timeout 600] [--pack target/release/pack] [--work DIR]
     python tools/bench_mesh.py voxel [--resolutions 16 24 32 40] [--pack ...] [--work DIR]
     python tools/bench_mesh.py plane --resolutions 120 240 360 --meshes 0.3:1 0.15:2 [...]
@@ -12,7 +12,7 @@ Needs gmsh in the Python that `pack` runs ($GRAINPACK_PYTHON, else python3), Cal
 scale: packs and meshes ellipsoids (equivalent diameter uniform in [2.5, 4], aspect
 ratio uniform in [1.2, 2], random orientations, gap 0.05, periodic cube, seed 1) with
 the box edge chosen for about N grains at fraction F (mean grain volume 18.93), at the
-default mesh_size 0.3, linear tetrahedra, `--threads 1`; prints one row per scene:
+default mesh_size 0.3, linear tetrahedra (--order 2: quadratic), `--threads 1`; prints one row per scene:
 grains, fraction, box, elements, nodes, SICN, geometry and meshing seconds, wall and
 CPU seconds, peak memory, the grains' mesh volume against the exact one. A run over
 `--timeout` seconds is stopped and reported as such.
@@ -67,6 +67,7 @@ vtk = false
 centers = false
 statistics_png = false
 mesh = true
+mesh_order = {order}
 """
 
 VOXEL_SCENE = """
@@ -130,8 +131,8 @@ def scale(args, work):
     for n in args.grains:
         for fraction in args.fractions:
             edge = round((n * MEAN_GRAIN_VOLUME / fraction) ** (1.0 / 3.0), 1)
-            name = f"n{n}_f{fraction}"
-            text = SCALE_SCENE.format(fraction=fraction, edge=edge, name=name)
+            name = f"n{n}_f{fraction}_o{args.order}"
+            text = SCALE_SCENE.format(fraction=fraction, edge=edge, name=name, order=args.order)
             s, wall, cpu, peak, err = run_pack(args.pack, work, name, text, args.timeout)
             if s is None:
                 mem = "" if peak is None else f", peak {peak / 1024:.0f} MB"
@@ -263,6 +264,8 @@ def main():
     parser.add_argument("--resolutions", type=int, nargs="+", default=[16, 24, 32, 40])
     parser.add_argument("--meshes", nargs="+", default=["0.3:1", "0.3:2", "0.15:1"],
                         help="mesh_size:mesh_order of the conforming meshes (voxel)")
+    parser.add_argument("--order", type=int, default=1, choices=[1, 2],
+                        help="scale: mesh_order (1: C3D4, 2: C3D10)")
     parser.add_argument("--timeout", type=float, default=600.0)
     parser.add_argument("--pack", default="target/release/pack")
     parser.add_argument("--work", default=None)

@@ -13,46 +13,116 @@ images of the grains crossing the box cut to it and fragmented with it, the othe
 holes of the matrix (build_geometry); the packing's window is shifted so every
 grain clears the box faces by a margin (thin caps mesh badly);
 opposite faces paired by centre of mass and area, then setPeriodic; HXT for the
-volume; a retry with curvature-driven sizes when gmsh's periodic copy of a curve fails;
+volume; when gmsh fails, a second attempt on the geometry rebuilt, with sizes from
+curvature;
 periodic nodes paired by coordinates and snapped exactly onto their images plus the
-box length.
+box length; for quadratic elements, the middle nodes added to this linear mesh
+afterwards and made periodic in turn (mesh_quadratic.py).
 """
 
 import json
+import re
 import sys
 import time
 
 from mesh_common import MeshError
 from mesh_geometry import build_geometry, half_extents, make_periodic, window
-from mesh_nodes import (TET10_ORDER, check_faces, extract, group_by_grain, mid_images,
-                        number_nodes, pair_by_coordinates, snap, tet_volume)
+from mesh_nodes import (check_faces, extract, group_by_grain, number_nodes,
+                        pair_by_coordinates, snap, tet_volume)
+from mesh_quadratic import elevate
 from mesh_plane import mesh_plane
 from mesh_write import finish
 
 # Exit code for "gmsh could not mesh this packing" (pack maps it to its message).
 EXIT_MESH_FAILED = 3
-# Curvature-driven sizing used on the retry (elements per 2 pi of curvature).
-RETRY_CURVATURE = 24
+# Sizes from curvature (elements per 2 pi of curvature) of the second attempt: small cut
+# curves (thin caps, at 500 grains) get short elements, and so do the grains' most
+# curved parts (1.8x the tetrahedra on tools/check_mesh.py's composite).
+RETRY_CURVATURE = 12
 
 
-def generate(gmsh, job):
-    """Meshes in 3D; on gmsh's failure of a periodic curve copy, once more with sizes
-    from curvature. Returns the retry flag."""
-    try:
-        gmsh.model.mesh.generate(3)
-        return False
-    except Exception as first:  # gmsh raises plain Exception
-        text = str(first) + " " + " ".join(gmsh.logger.get()[-20:])
-        if "correspondant" not in text and "corresponding" not in text:
-            raise MeshError(str(first)) from None
-        gmsh.model.mesh.clear()
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", RETRY_CURVATURE)
+def where(gmsh, volumes):
+    """The surfaces gmsh's log blames (invalid elements, periodic
+    copies), each with the grains (or the matrix) on its sides: for the message of a
+    failed mesh."""
+    found = []
+    for line in gmsh.logger.get():
+        for tag in re.findall(r"surface (\d+)", line):
+            if ("rror" in line or "invalid" in line) and int(tag) not in found:
+                found.append(int(tag))
+    parts = []
+    for tag in found[-4:]:
         try:
-            gmsh.model.mesh.generate(3)
-        except Exception as second:
-            raise MeshError(f"{second} (after a retry with Mesh.MeshSizeFromCurvature = "
-                            f"{RETRY_CURVATURE}; first: {first})") from None
-        return True
+            up, _ = gmsh.model.getAdjacencies(2, tag)
+        except Exception:  # gmsh raises plain Exception
+            continue
+        sides = ["the matrix" if volumes.get(int(v)) is None
+                 else f"grain {volumes[int(v)]['id']}" for v in up]
+        parts.append(f"surface {tag} (of {' and '.join(sides)})")
+    return "; gmsh's log blames " + ", ".join(parts) if parts else ""
+
+
+def configure(gmsh, job):
+    """gmsh's options for a 3D job, and its log started."""
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.option.setNumber("General.NumThreads", job["threads"])
+    gmsh.option.setNumber("Geometry.OCCParallel", 1)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", job["element_size"])
+    gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+    # Linear first, quadratic after the periodic snapping (mesh_quadratic.py).
+    gmsh.option.setNumber("Mesh.ElementOrder", 1)
+    gmsh.logger.start()
+
+
+def tetrahedra(gmsh):
+    """gmsh's 3D mesh; one without an element is a failure (gmsh's generate returned
+    without an exception and without elements after an HXT failure)."""
+    gmsh.model.mesh.generate(3)
+    types, tags, _ = gmsh.model.mesh.getElements(3)
+    if not any(len(t) for t in tags):
+        log = [line for line in gmsh.logger.get() if "rror" in line][-2:]
+        raise Exception("gmsh returned no elements" + (": " + "; ".join(log) if log else ""))
+
+
+def model(gmsh, job, origin):
+    """The geometry in a new gmsh model, its face pieces paired and its volumes in
+    physical groups per grain: (volumes, pairs)."""
+    gmsh.model.add("grainpack")
+    volumes = build_geometry(gmsh, job, origin)
+    pairs = make_periodic(gmsh, origin, job["box"]) if job["periodic"] else 0
+    for gid, tags in group_by_grain(volumes).items():
+        p = gmsh.model.addPhysicalGroup(3, tags)
+        gmsh.model.setPhysicalName(3, p, "matrix" if gid is None else f"grain_{gid}")
+    return volumes, pairs
+
+
+def generate(gmsh, job, origin, volumes):
+    """Meshes in 3D. When gmsh fails (HXT refusing a surface mesh with invalid
+    triangles, a periodic curve meshed differently on its two sides), once more in a
+    new gmsh session on the geometry rebuilt, with sizes from curvature (in the same
+    session, after a failure, gmsh's mesh.clear() and a second generate, or a new
+    model, gave no elements). Returns (volumes, whether the second attempt was
+    needed, its geometry seconds). A failure of both names gmsh's messages and the
+    surfaces its log blames (`where`)."""
+    try:
+        tetrahedra(gmsh)
+        return volumes, False, 0.0
+    except Exception as e:  # gmsh raises plain Exception
+        first = f"{e}{where(gmsh, volumes)}"
+    gmsh.finalize()
+    gmsh.initialize(["grainpack"], readConfigFiles=False)
+    configure(gmsh, job)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", RETRY_CURVATURE)
+    started = time.monotonic()
+    volumes, _ = model(gmsh, job, origin)
+    rebuilt = time.monotonic() - started
+    try:
+        tetrahedra(gmsh)
+    except Exception as second:
+        raise MeshError(f"{second}{where(gmsh, volumes)} (in a second attempt with "
+                        f"Mesh.MeshSizeFromCurvature = {RETRY_CURVATURE}; the first: "
+                        f"{first})") from None
+    return volumes, True, rebuilt
 
 
 def mesh(gmsh, job):
@@ -62,57 +132,34 @@ def mesh(gmsh, job):
         g["extent"] = half_extents(g)
     started = time.monotonic()
     origin, margins = window(job)
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.option.setNumber("General.NumThreads", job["threads"])
-    gmsh.option.setNumber("Geometry.OCCParallel", 1)
-    gmsh.model.add("grainpack")
-    volumes = build_geometry(gmsh, job, origin)
-    pairs = make_periodic(gmsh, origin, size) if job["periodic"] else 0
-    for gid, tags in group_by_grain(volumes).items():
-        p = gmsh.model.addPhysicalGroup(3, tags)
-        gmsh.model.setPhysicalName(3, p, "matrix" if gid is None else f"grain_{gid}")
+    configure(gmsh, job)
+    volumes, pairs = model(gmsh, job, origin)
     geometry_seconds = time.monotonic() - started
-    gmsh.option.setNumber("Mesh.MeshSizeMax", job["element_size"])
-    gmsh.option.setNumber("Mesh.Algorithm3D", 10)
-    gmsh.option.setNumber("Mesh.ElementOrder", job["order"])
-    gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-    # Middle nodes moved onto the curved surfaces invert some thin elements (3 of 12k
-    # seen): gmsh's elastic-and-optimisation pass untangles them.
-    gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
-    gmsh.logger.start()
-    retried = generate(gmsh, job)
-    pieces = extract(gmsh, volumes, job["order"])
+    volumes, retried, rebuilt = generate(gmsh, job, origin, volumes)
+    geometry_seconds += rebuilt
+    pieces = extract(gmsh, volumes, 1)
     new, coords = number_nodes(gmsh, pieces, origin)
-    images = {}
+    pieces = [(grain, tags, [[new[n] for n in e] for e in conn]) for grain, tags, conn in pieces]
+    images, worst, straightened = {}, 0.0, 0
     if job["periodic"]:
-        # The vertices by coordinates; the middle nodes of quadratic elements, which
-        # gmsh's high-order optimisation moves on each side alike but not exactly,
-        # by their edges (mid_images).
-        vertices = {new[n] for _, _, conn in pieces for e in conn for n in e[:4]}
-        images = pair_by_coordinates({n: coords[n] for n in vertices}, origin, size)
+        images = pair_by_coordinates(coords, origin, size)
         worst = snap(gmsh, coords, images, size)
-        if job["order"] == 2:
-            conns = [[new[n] for n in e] for _, _, conn in pieces for e in conn]
-            conns = [[e[i] for i in TET10_ORDER] for e in conns]
-            middles = mid_images(conns, coords, images, origin, size)
-            worst = snap(gmsh, coords, middles, size, worst)
-            images.update(middles)
+    if job["order"] == 2:
+        pieces, coords, images, mid_worst, straightened = elevate(
+            gmsh, volumes, origin, size, coords, images, job["periodic"])
+        worst = max(worst, mid_worst)
+    if job["periodic"]:
         check_faces(coords, images, origin, size)
-    else:
-        worst = 0.0
     mesh_seconds = time.monotonic() - started - geometry_seconds
     elements = []
-    npe = 4 if job["order"] == 1 else 10
     for grain, tags, conn in pieces:
         quality = gmsh.model.mesh.getElementQualities(tags, "minSICN")
-        for e, q in zip(conn, quality):
-            nodes = [new[n] for n in e]
-            if npe == 10:
-                nodes = [nodes[i] for i in TET10_ORDER]
+        for nodes, q in zip(conn, quality):
             vol = tet_volume([coords[n] for n in nodes[:4]])
             elements.append((grain, nodes, float(q), vol))
     report = {"geometry_seconds": geometry_seconds, "mesh_seconds": mesh_seconds,
-              "retried": retried, "margins": margins, "pairs": pairs, "worst": worst}
+              "retried": retried, "margins": margins, "pairs": pairs, "worst": worst,
+              "straightened": straightened}
     return finish(gmsh, job, coords, elements, images, origin, report)
 
 

@@ -78,13 +78,51 @@ def images(grain, origin, size, periodic):
     return [(a, b, c) for a in shifts[0] for b in shifts[1] for c in shifts[2]]
 
 
-def ellipsoid(occ, grain, shift):
+def frame(u):
+    """An orthonormal basis (columns) whose third vector is the unit vector u."""
+    helper = [1.0, 0.0, 0.0] if abs(u[0]) < 0.9 else [0.0, 1.0, 0.0]
+    e1 = [helper[(i + 1) % 3] * u[(i + 2) % 3] - helper[(i + 2) % 3] * u[(i + 1) % 3]
+          for i in range(3)]
+    n = math.sqrt(sum(x * x for x in e1))
+    e1 = [x / n for x in e1]
+    e2 = [u[(i + 1) % 3] * e1[(i + 2) % 3] - u[(i + 2) % 3] * e1[(i + 1) % 3] for i in range(3)]
+    return [[e1[i], e2[i], u[i]] for i in range(3)]
+
+
+def ellipsoid_map(grain, origin, size):
+    """The affine map (3 x 3 matrix, the centre apart) taking OCC's unit sphere to the
+    grain, with the sphere's poles (degenerate points of its parametrization, where
+    gmsh's surface meshes of cut pieces failed: issue 29's "HXT 3D mesh failed" and
+    "curve X has n vertices, whereas correspondant Y has m") put on the grain's two
+    tangent points along the axis whose poles lie farthest from every box face. The
+    sphere turned first is the same sphere, so the grain is the same."""
     r = quaternion_matrix(grain["quaternion"])
     a = grain["semi_axes"]
+    m = [[r[i][k] * a[k] for k in range(3)] for i in range(3)]
+    best, best_clear = None, -1.0
+    for d in range(3):
+        # The tangent points along d: c +- M u with u = M^T e_d / |M^T e_d|.
+        mt = [m[d][k] for k in range(3)]
+        n = math.sqrt(sum(x * x for x in mt))
+        u = [x / n for x in mt]
+        offset = [sum(m[i][k] * u[k] for k in range(3)) for i in range(3)]
+        clear = math.inf
+        for sign in (1.0, -1.0):
+            for i in range(len(size)):
+                t = (grain["centre"][i] + sign * offset[i] - origin[i]) % size[i]
+                clear = min(clear, t, size[i] - t)
+        if clear > best_clear:
+            best, best_clear = u, clear
+    p = frame(best)
+    return [[sum(m[i][k] * p[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def ellipsoid(occ, grain, shift, linear):
+    """The grain moved by `shift` as an OCC volume; `linear` from ellipsoid_map."""
     s = occ.addSphere(0, 0, 0, 1)
     m = []
     for i in range(3):
-        m += [r[i][0] * a[0], r[i][1] * a[1], r[i][2] * a[2], grain["centre"][i] + shift[i]]
+        m += linear[i] + [grain["centre"][i] + shift[i]]
     occ.affineTransform([(3, s)], m)
     return s
 
@@ -113,8 +151,9 @@ def build_geometry(gmsh, job, origin):
             g["centre"][d] + shifts[0][d] - g["extent"][d] < origin[d]
             or g["centre"][d] + shifts[0][d] + g["extent"][d] > origin[d] + size[d]
             for d in range(3)))
+        linear = ellipsoid_map(g, origin, size)
         for t in shifts:
-            tag = ellipsoid(occ, g, t)
+            tag = ellipsoid(occ, g, t, linear)
             if not crossing:
                 inner.append((tag, g, t))
                 continue

@@ -192,7 +192,7 @@ def write_vtu(path, coords, elements, order, phases, dimension=3):
 def finish(gmsh, job, coords, elements, images, origin, report):
     """Refuses inverted elements, writes mesh.msh (gmsh), mesh.inp and mesh.vtu, and
     returns summary.json's mesh block: the `report` entries (times, retry, margins,
-    face pairs, largest snap) among the counts, the quality and each phase's volume
+    face pairs, largest snap, middle nodes straightened) among the counts, the quality and each phase's volume
     (area in 2D) fraction against the packing's exact one."""
     sicn = sorted(q for _, _, q, _ in elements)
     inverted = sum(1 for q in sicn if q <= 0.0)
@@ -231,6 +231,7 @@ def finish(gmsh, job, coords, elements, images, origin, report):
         "periodic_face_pairs": report["pairs"],
         "periodic_nodes": len(images),
         "largest_snap": report["worst"],
+        "straightened_middle_nodes": report.get("straightened", 0),
         "phase_volume_fractions": [
             {"phase": p, "mesh": phases.get(p, 0.0) / box, "exact": exact.get(p, 0.0) / box}
             for p in sorted(set(phases) | set(exact))

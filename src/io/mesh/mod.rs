@@ -53,13 +53,14 @@ const SCRIPT_MESH_FAILED: i32 = 3;
 
 /// The mesher's Python modules (name, source), embedded so that `pack` needs no file
 /// beside it; `LOADER` makes them importable and runs `gmsh_mesh.main()`.
-const MODULES: [(&str, &str); 6] = [
+const MODULES: [(&str, &str); 7] = [
     ("gmsh_mesh", include_str!("gmsh_mesh.py")),
     ("mesh_common", include_str!("mesh_common.py")),
     ("mesh_geometry", include_str!("mesh_geometry.py")),
     ("mesh_nodes", include_str!("mesh_nodes.py")),
     ("mesh_write", include_str!("mesh_write.py")),
     ("mesh_plane", include_str!("mesh_plane.py")),
+    ("mesh_quadratic", include_str!("mesh_quadratic.py")),
 ];
 
 /// Run as `python -c LOADER job.json`, with [`MODULES`] as a JSON object on stdin.
@@ -114,8 +115,9 @@ pub struct MeshStats {
     pub geometry_seconds: f64,
     /// Seconds to mesh it (surfaces, volumes, periodic snapping).
     pub mesh_seconds: f64,
-    /// Whether the first attempt failed on a periodic curve and the retry with sizes
-    /// from curvature was needed.
+    /// Whether gmsh's first attempt failed and the mesh is the second one's: the
+    /// geometry rebuilt in a new gmsh session, with sizes from curvature (its seconds
+    /// count in `geometry_seconds`).
     pub retried_with_curvature: bool,
     /// Lower corner of the meshed window of the periodic packing (two coordinates in
     /// 2D, where the mesh lies in the plane z = 0).
@@ -130,6 +132,11 @@ pub struct MeshStats {
     /// Largest distance a periodic node moved when snapped onto its master plus the
     /// box length.
     pub largest_snap: f64,
+    /// Quadratic elements only: middle nodes put back on their edge's straight midpoint
+    /// because, on the curved surface, they inverted an element (with their periodic
+    /// partners); 0 for linear elements.
+    #[serde(default)]
+    pub straightened_middle_nodes: usize,
     /// Per phase (the matrix last), the volume fraction (area fraction in 2D) of the
     /// mesh's elements against the packing's exact one: they differ by the chordal
     /// error of the elements.
