@@ -208,3 +208,72 @@ fn a_pairs_contact_factor_stays_above_its_move_and_turn_bound() {
     // The bound is not vacuous: it is within 20 % for some pairs.
     assert!(tight > 0);
 }
+
+/// The skip test (allowances in `f32` against each grain's motion) never skips a pair
+/// that overlaps: over many small moves and turns of a crowd within one list build,
+/// the forces, torques and energy are bitwise those of a fresh evaluation that tests
+/// every pair, and pairs are skipped at all.
+#[test]
+fn skipping_pairs_changes_no_force() {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
+    let domain = Domain::new([6.0; 3], Boundary::Periodic);
+    let specs: Vec<GrainSpec> = (0..40)
+        .map(|_| {
+            let axes = [rng.random_range(0.4..0.8), 0.4, rng.random_range(0.3..0.4)];
+            grain(axes, std::array::from_fn(|_| rng.random_range(-1.0..1.0)))
+        })
+        .collect();
+    let mut state = State::new(&specs, &domain, 0.0).unwrap();
+    state.centres = (0..40)
+        .map(|_| std::array::from_fn(|_| rng.random_range(1.0..5.0)))
+        .collect();
+    let pairs: Vec<Pair> = (0..40u32)
+        .flat_map(|i| {
+            (i + 1..40).map(move |j| Pair {
+                i,
+                j,
+                image: [0; 3],
+            })
+        })
+        .collect();
+    let mut kept = Forces::default();
+    let (mut skipped, mut overlapping) = (0, 0);
+    for step in 0..60 {
+        let big_s = if step < 30 { 0.9 } else { 0.95 };
+        kept.evaluate(&state, &pairs, 1, big_s, true);
+        let mut fresh = Forces::default();
+        fresh.evaluate(&state, &pairs, 1, big_s, true);
+        assert_eq!(kept.force, fresh.force, "step {step}");
+        assert_eq!(kept.torque, fresh.torque, "step {step}");
+        assert_eq!(kept.energy.to_bits(), fresh.energy.to_bits(), "step {step}");
+        skipped += fresh.tested - kept.tested;
+        overlapping += kept.overlaps;
+        for c in &mut state.centres {
+            c.iter_mut()
+                .for_each(|x| *x += rng.random_range(-0.01..0.01));
+        }
+        let turned: Vec<(usize, [f64; 4])> = (0..40)
+            .map(|i| {
+                let angle = std::array::from_fn(|_| rng.random_range(-0.01..0.01));
+                (i, rotate_by(state.quaternions[i], angle))
+            })
+            .collect();
+        state.set_orientations(&turned).unwrap();
+    }
+    assert!(
+        skipped > 0 && overlapping > 0,
+        "{skipped} skipped, {overlapping} overlapping"
+    );
+}
+
+#[test]
+fn allowances_round_down() {
+    for x in [0.1, -0.1, 1.0 / 3.0, 1e-30, -7e12, 123.456_789] {
+        assert!(f64::from(round_down(x)) <= x, "{x}");
+        assert!(
+            (f64::from(round_down(x)) - x).abs() <= x.abs() * 1.2e-7,
+            "{x}"
+        );
+    }
+}
