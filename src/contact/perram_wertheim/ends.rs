@@ -7,9 +7,19 @@
 //! monotone map of λ and `f` is concave), so its maximum is at an end it does not
 //! rise from, and it can fail to rise from both only if it is constant.
 
-use super::robust::Maximum;
 use crate::contact::scale::{exponent, ldexp};
 use crate::contact::Stop;
+
+/// Where `F = N/C` is largest on `[0, 1]`, and its value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Maximum {
+    pub value: f64,
+    /// `1 − λ̂` and `λ̂`, each with its own relative precision.
+    pub s: f64,
+    pub t: f64,
+    pub stop: Stop,
+    pub iterations: u32,
+}
 
 /// A cross term `n_k c_0 − c_k n_0` within `CROSS_TERM_TOL · (n_k c_0 + c_k n_0)` of 0 has
 /// no sign the coefficients resolve, and the next order decides. Each coefficient is a

@@ -36,7 +36,7 @@
 //! coefficients accurate to about `ε²` (module [`exact`](super::exact)), so μ² is
 //! accurate to a few ulps.
 
-use super::ends::{end, maximum_at_an_end, reversed};
+use super::ends::{end, maximum_at_an_end, reversed, Maximum};
 use super::exact::{coefficients, rank, singular_form};
 use super::MAX_ITERATIONS;
 use crate::contact::ldl::Ldl;
@@ -188,17 +188,6 @@ fn vanishing((a, b): ([f64; 3], [f64; 4]), k1: usize, k2: usize) -> ([f64; 3], [
         }
     }
     (a, b)
-}
-
-/// Where `F = N/C` is largest on `[0, 1]`, and its value.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Maximum {
-    pub value: f64,
-    /// `1 − λ̂` and `λ̂`, each with its own relative precision.
-    pub s: f64,
-    pub t: f64,
-    pub stop: Stop,
-    pub iterations: u32,
 }
 
 /// The maximum of `F = N/C` (module docs) on `[0, 1]`, or an overflow error if `F` is
