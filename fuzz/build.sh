@@ -13,4 +13,6 @@ export RUSTFLAGS="-Cpasses=sancov-module \
  -Cllvm-args=-sanitizer-coverage-trace-compares \
  --cfg fuzzing -Cdebug-assertions -Coverflow-checks"
 # --target: RUSTFLAGS then reach the targets only, not build scripts and proc macros.
-cargo build --release --bins --target x86_64-unknown-linux-gnu "$@"
+# --locked: a lock that no longer matches Cargo.toml (the library gained or lost a
+# dependency) stops the build instead of being re-resolved behind its back.
+cargo build --locked --release --bins --target x86_64-unknown-linux-gnu "$@"

@@ -179,3 +179,120 @@ fn measured_grains_beyond_the_double_range_are_refused_not_given_an_infinite_box
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// fuzz target contact_bits_2d (open defect 1 of the second round: 140 of 300 000
+/// extreme random pairs). Pairs of ellipses degenerate to segments, sizes up to 1e150
+/// apart, answered a μ² that depended on their order, all as a limit at an end
+/// (`Stop::Exact`). The first has a segment of length 0.026 tilted by 3.5e-122 (its
+/// off-diagonal entry) against one 7e-155 long across it: the limit at the first
+/// form's end, (offset of r across the long segment)² / `q2_xx` = 1.1e-163, is 1e62
+/// times the other end's, but in one order the first cross term of that end's rise
+/// test (0 in real arithmetic, −1.8e-15 against products of 8.9 in doubles) said that
+/// F did not rise from the small limit, and the small end was taken. The rise test
+/// now leaves a cross term at rounding level to the next order
+/// (`perram_wertheim::ends`, `CROSS_TERM_TOL`) and scales its products out of the
+/// underflow; an end is taken only if F does not rise from it and the other end, when
+/// neither does, has the smaller limit.
+#[test]
+fn swapping_two_segments_whose_rise_test_is_at_rounding_level_keeps_mu2() {
+    use grainpack::contact::contact_function_2d;
+    let pairs = [
+        (
+            [1.168163775723566e-307, 3.4262214803761265e-115],
+            [
+                6.8990327155894e-310,
+                5.909106320800166e-126,
+                0.00016787461936473998,
+            ],
+            [1.303754213969547e-309, 0.0, 0.0],
+        ),
+        (
+            [3.645561014053373e-304, 5.222099096e-315],
+            [0.0, 7.987e-320, 6.71677982612e-312],
+            [2743.001953125, 0.0, 6.02816564297415e-310],
+        ),
+        (
+            [3.4732829715905e-310, -7.105433710363454e-15],
+            [8.087e-320, 1.186e-321, 7.291109417819143e-304],
+            [6.27e-322, 0.0, 0.0],
+        ),
+    ];
+    for (r, q1, q2) in pairs {
+        let a = contact_function_2d(&r, &q1, &q2).unwrap();
+        let b = contact_function_2d(&r.map(|x| -x), &q2, &q1).unwrap();
+        assert_eq!(a.mu2, b.mu2, "{r:?} {q1:?} {q2:?}: {a:?} {b:?}");
+    }
+    // The first pair in closed form: a few roundings of a quotient and a product, so
+    // 1e-14 relative covers them.
+    let (r, q1, q2) = pairs[0];
+    let offset = r[0] - r[1] * (q1[1] / q1[2]);
+    let mu2 = (offset / q2[0].sqrt()).powi(2);
+    let a = contact_function_2d(&r, &q1, &q2).unwrap();
+    assert!((a.mu2 - mu2).abs() <= 1e-14 * mu2, "{a:?} against {mu2:e}");
+}
+
+/// fuzz target contact_bits_2d: two segments (along (1, 1) and along x, both of
+/// `q_xx = a`) and `r` along y with |r| = R: `f(λ) = R²/a` for every λ (to 1e-98), so
+/// F did not rise from either end, the first end tested was taken in both orders,
+/// and λ was 0 both ways instead of mirrored. Now a flat F answers λ = ½ (in the
+/// scaled variable), the same pair in either order.
+#[test]
+fn lambda_mirrors_for_two_segments_whose_contact_function_is_flat() {
+    use grainpack::contact::contact_function_2d;
+    let a = 2.5194700025415145e93;
+    let r = [3.091245889688676e-5, 2.58030839329865e93];
+    let q1 = [a, a, a];
+    let q2 = [a, 4.3000643038131325e-307, 7.630052052720683e-305];
+    let one = contact_function_2d(&r, &q1, &q2).unwrap();
+    let other = contact_function_2d(&r.map(|x| -x), &q2, &q1).unwrap();
+    // R²/a, two roundings.
+    let mu2 = r[1] / a * r[1];
+    assert!((one.mu2 - mu2).abs() <= 4.0 * f64::EPSILON * mu2, "{one:?}");
+    assert_eq!(one.mu2, other.mu2);
+    assert_eq!(one.lambda, 1.0 - other.lambda, "{one:?} {other:?}");
+}
+
+/// fuzz target scene_keys (open defect 3 of the second round): `grains = 4` of constant
+/// size 1e-300 (and 5e-324) in a box of 20, in 3D and in 2D, validated; packing them
+/// failed (`RunError::Pack`: the squared semi-axes underflowed, and a pivot of the
+/// grain's factorisation was 0 or NaN; the volumes and fractions were 0). Now refused,
+/// naming the size and its value; sizes just above the limits still validate and pack.
+#[test]
+fn grains_too_small_for_doubles_are_refused_naming_their_size_not_left_to_fail_packing() {
+    use grainpack::run::{run, RunOptions};
+    use grainpack::scene::Scene;
+    let scene = |size: &str, d: &str| {
+        format!(
+            "seed = 1\ngrains = 4\n[box]\nsize = {size}\n[[phase]]\n[phase.size]\n\
+             distribution = \"constant\"\nvalue = {d}\n"
+        )
+    };
+    let (cube, square) = ("[20.0, 20.0, 20.0]", "[20.0, 20.0]");
+    for (size, d) in [
+        (cube, "1e-300"),
+        (cube, "5e-324"),
+        (square, "1e-300"),
+        (cube, "1e-103"),
+    ] {
+        let e = Scene::from_str(&scene(size, d), "tiny.toml").unwrap_err();
+        let message = e.to_string();
+        assert!(
+            message.contains(&format!("tiny.toml:8:9: phase[0].size.value = {d}: ")),
+            "{message}"
+        );
+        assert!(
+            message.contains("below what the packing resolves"),
+            "{message}"
+        );
+    }
+    // The limits: a volume of at least 2.2e-308 in 3D, semi-axes of 6.7e-139 in 2D.
+    for (size, d) in [(cube, "1e-102"), (square, "1e-137")] {
+        let s = Scene::from_str(&scene(size, d), "tiny.toml").unwrap();
+        let options = RunOptions {
+            threads: std::num::NonZeroUsize::new(1),
+            ..RunOptions::default()
+        };
+        let packed = run(&s, options).unwrap();
+        assert!(packed.packing.verification.is_clean(), "d = {d}");
+    }
+}

@@ -222,6 +222,35 @@ impl Phase {
     }
 }
 
+impl Phase {
+    /// A lower bound on the shortest semi-axis any grain can have: `d_min/2` times
+    /// `min(α_min^{2/3}, α_max^{−1/3})` for spheroids, `min(α_min^{1/2}, α_max^{−1/2})`
+    /// for ellipses, `γ_min^{2/3}` for triaxial grains (`c = (d/2) γ^{2/3} β^{−1/3}`,
+    /// `β ≤ 1`); a table's semi-axes, if it gives them.
+    pub fn min_semi_axis(&self) -> f64 {
+        if let Some(m) = self.measured.as_ref().filter(|m| m.has_semi_axes()) {
+            // An ellipse's third semi-axis, √(a1 a2), is never the shortest.
+            return (m.grains.iter())
+                .filter_map(|g| g.semi_axes)
+                .map(|a| a[0].min(a[1]).min(a[2]))
+                .fold(f64::INFINITY, f64::min);
+        }
+        let half = 0.5 * self.size.support().0;
+        if let Some(t) = &self.triaxial {
+            let gamma = match &t.third {
+                ThirdRatio::OverA(law) => law.support().0,
+                ThirdRatio::OverB(law) => t.b_over_a.support().0 * law.support().0,
+            };
+            return half * gamma.powf(2.0 / 3.0);
+        }
+        let (a_min, a_max) = self.aspect_ratio.support();
+        match self.dimension {
+            Dimension::Two => half * a_min.sqrt().min(1.0 / a_max.sqrt()),
+            Dimension::Three => half * a_min.powf(2.0 / 3.0).min(a_max.powf(-1.0 / 3.0)),
+        }
+    }
+}
+
 /// `1 / Σₚ (shareₚ / E[vₚ])`: see [`Scene::expected_grain_volume`].
 pub(crate) fn mean_grain_volume(phases: &[Phase]) -> f64 {
     1.0 / phases

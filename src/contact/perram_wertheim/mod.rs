@@ -350,6 +350,7 @@ const STEP_X_MAX: f64 = 0.11;
 mod batch;
 mod condition;
 mod corrector;
+mod ends;
 mod exact;
 mod robust;
 #[cfg(test)]

@@ -36,6 +36,7 @@
 //! coefficients accurate to about `ε²` (module [`exact`](super::exact)), so μ² is
 //! accurate to a few ulps.
 
+use super::ends::{end, maximum_at_an_end, reversed, Maximum};
 use super::exact::{coefficients, rank, singular_form};
 use super::MAX_ITERATIONS;
 use crate::contact::ldl::Ldl;
@@ -189,17 +190,6 @@ fn vanishing((a, b): ([f64; 3], [f64; 4]), k1: usize, k2: usize) -> ([f64; 3], [
     (a, b)
 }
 
-/// Where `F = N/C` is largest on `[0, 1]`, and its value.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Maximum {
-    value: f64,
-    /// `1 − λ̂` and `λ̂`, each with its own relative precision.
-    s: f64,
-    t: f64,
-    stop: Stop,
-    iterations: u32,
-}
-
 /// The maximum of `F = N/C` (module docs) on `[0, 1]`, or an overflow error if `F` is
 /// unbounded at an end (`N` vanishes there to a lower order than `C`). `odds`, an
 /// estimate of `λ̂/(1−λ̂)` at the maximum, is where the search starts if it is usable.
@@ -218,13 +208,11 @@ fn maximise(n: &[f64; 5], c: &[f64; 5], odds: f64) -> Result<Maximum, ContactErr
     if n_lo < c_lo || n_hi > c_hi {
         return Err(infinite);
     }
+    let same_order = |a: usize, b: usize| (a == b).then_some(a);
+    if let Some(m) = maximum_at_an_end(n, c, same_order(n_lo, c_lo), same_order(n_hi, c_hi)) {
+        return Ok(m);
+    }
     let (nr, cr) = (reversed(n), reversed(c));
-    if n_lo == c_lo && !rises(&n[n_lo..], &c[c_lo..]) {
-        return Ok(end(n[n_lo] / c[c_lo], false));
-    }
-    if n_hi == c_hi && !rises(&nr[4 - n_hi..], &cr[4 - c_hi..]) {
-        return Ok(end(n[n_hi] / c[c_hi], true));
-    }
     // The root lies above ½ if ψ(½) > 0: mirrored, it lies in (0, ½].
     let mirrored = psi(n, c, 1.0).0 > 0.0;
     let (n, c) = if mirrored { (&nr, &cr) } else { (n, c) };
@@ -239,33 +227,6 @@ fn maximise(n: &[f64; 5], c: &[f64; 5], odds: f64) -> Result<Maximum, ContactErr
         stop,
         iterations,
     })
-}
-
-/// The maximum at λ̂ = 0 (or 1 if `at_one`), in closed form.
-fn end(value: f64, at_one: bool) -> Maximum {
-    let (s, t) = if at_one { (0.0, 1.0) } else { (1.0, 0.0) };
-    Maximum {
-        value,
-        s,
-        t,
-        stop: Stop::Exact,
-        iterations: 0,
-    }
-}
-
-fn reversed(p: &[f64; 5]) -> [f64; 5] {
-    [p[4], p[3], p[2], p[1], p[0]]
-}
-
-/// Whether `N/C` rises from `x = 0` when both start at the same index (`n[0], c[0] >
-/// 0`): `ψ(x) = k (n_k/n_0 − c_k/c_0) (x/(1−x))^k + …` for the first `k` where the
-/// normalised coefficients differ.
-fn rises(n: &[f64], c: &[f64]) -> bool {
-    let pad = |p: &[f64], k: usize| p.get(k).copied().unwrap_or(0.0);
-    (1..n.len().max(c.len()))
-        .map(|k| pad(n, k) * c[0] - pad(c, k) * n[0])
-        .find(|&d| d != 0.0)
-        .is_some_and(|d| d > 0.0)
 }
 
 /// The terms `p_k y^{k−l}` (`l` the first index with `p_l > 0`) at `y = x/(1−x)`,

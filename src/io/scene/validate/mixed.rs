@@ -135,7 +135,9 @@ pub(super) fn sized_box(
                     "target_fraction",
                     f,
                     format!(
-                        "the measured grains' total volume ({volume:e}) is beyond the range                          of the box this would size (sides {:e}); give the table in smaller                          units",
+                        "the measured grains' total volume ({volume:e}) is beyond the range \
+                         of the box this would size (sides {:e}); give the table in smaller \
+                         units",
                         domain.size[0] * scale
                     ),
                 ));

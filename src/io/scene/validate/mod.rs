@@ -11,6 +11,7 @@ mod measured_columns;
 mod mixed;
 mod output;
 mod plane;
+mod smallest;
 mod solver;
 mod table;
 mod texture;
@@ -259,6 +260,7 @@ fn phase(
             ),
         ));
     }
+    smallest::resolved(src, &key, raw, &phase)?;
     Ok(phase)
 }
 
