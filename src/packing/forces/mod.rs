@@ -56,8 +56,8 @@ pub(crate) struct Forces {
     /// and its orientation at the last evaluation.
     sweep: Vec<f64>,
     last_turn: Vec<[f64; 4]>,
-    /// Each grain's travel plus the skip threshold times its sweep: what the
-    /// allowances are spent in.
+    /// For turning grains, each one's travel plus the skip threshold times its sweep:
+    /// what the allowances are spent in (grains that do not turn spend travel alone).
     motion: Vec<f64>,
     /// The skip threshold the allowances were made for, and whether turns counted.
     skip_above: f64,
@@ -134,14 +134,16 @@ impl Forces {
         } else {
             self.advance(state, torques);
         }
-        self.motion.clear();
-        if torques {
-            let motion = self.travel.iter().zip(&self.sweep);
-            self.motion.extend(motion.map(|(t, h)| t + skip_above * h));
+        // Grains that do not turn spend their allowances in travel alone.
+        let motion: &[f64] = if torques {
+            self.motion.clear();
+            let summed = self.travel.iter().zip(&self.sweep);
+            self.motion.extend(summed.map(|(t, h)| t + skip_above * h));
+            &self.motion
         } else {
-            self.motion.extend_from_slice(&self.travel);
-        }
-        let (centres, shapes, motion) = (&state.centres, &state.shapes, &self.motion);
+            &self.travel
+        };
+        let (centres, shapes) = (&state.centres, &state.shapes);
         let (round, axes, shape) = (&state.round, &state.axes, &state.box_shape);
         let tested = AtomicU64::new(0);
         (self.energy, self.overlaps, self.min_mu1) = (0.0, 0, f64::INFINITY);
