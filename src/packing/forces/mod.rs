@@ -16,11 +16,14 @@
 use super::grains::turn_angle;
 use super::neighbours::relative;
 use super::state::State;
-use crate::contact::{contact_geometry_fast_prepared, dot, ContactGeometry, PreparedEllipsoid};
+use crate::contact::dot;
 use crate::octree::Pair;
 use crate::scene::Boundary;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
+
+mod pair;
+pub(crate) use pair::{cross, pair_energy};
+use pair::{pair_force, PairForce};
 
 /// The energy, forces and torques of a state, and what the narrow phase found.
 #[derive(Default)]
@@ -40,9 +43,8 @@ pub(crate) struct Forces {
     pub wall_hits: usize,
     /// Pairs the narrow phase tested.
     pub tested: u64,
-    /// The overlapping pairs of one chunk of the pair list and what they contribute,
-    /// in pair order.
-    hits: Vec<(u32, u32, PairForce)>,
+    /// What each task of one chunk of the pair list found.
+    found: Vec<Found>,
     /// Per candidate pair: how far its grains may still move before it must be tested
     /// again, as a bound on the sum of their [`motion`](Self::motion) (rounded down);
     /// valid until the list is rebuilt or the scale changes (see [`BOUND_SLACK`]).
@@ -84,15 +86,12 @@ pub const BOUND_SLACK: f64 = 1e-6;
 /// of [`turn_angle`] (a few ε).
 const TURN_ROUNDING: f64 = 16.0 * f64::EPSILON;
 
-/// What one overlapping pair contributes.
-#[derive(Clone, Copy)]
-struct PairForce {
-    /// Force on the second grain (the first gets its opposite).
-    force: [f64; 3],
-    torque_i: [f64; 3],
-    torque_j: [f64; 3],
-    energy: f64,
-    mu1: f64,
+/// One task's share of a chunk of the pair list: its overlapping pairs and what they
+/// contribute, in pair order, and how many pairs it tested.
+#[derive(Default)]
+struct Found {
+    hits: Vec<(u32, u32, PairForce)>,
+    tested: u64,
 }
 
 impl Forces {
@@ -145,60 +144,75 @@ impl Forces {
         };
         let (centres, shapes) = (&state.centres, &state.shapes);
         let (round, axes, shape) = (&state.round, &state.axes, &state.box_shape);
-        let tested = AtomicU64::new(0);
-        (self.energy, self.overlaps, self.min_mu1) = (0.0, 0, f64::INFINITY);
+        // One pair: skipped while its allowance lasts, else tested, its allowance
+        // renewed, and its force returned when it overlaps.
+        let test = |p: &Pair, allowance: &mut f32| -> Option<Option<PairForce>> {
+            let (i, j) = (p.i as usize, p.j as usize);
+            let spent = motion[i] + motion[j];
+            if spent <= f64::from(*allowance) {
+                return None;
+            }
+            let (ei, ej) = (&shapes[i], &shapes[j]);
+            let inner = ei.inscribed_radius() + ej.inscribed_radius();
+            let mut allow = |m: f64| *allowance = round_down((m - skip_above) * inner + spent);
+            let r = relative(centres, p, shape);
+            // The gauge of a body inside the ball of radius b_i + b_j is at least
+            // |r| / (b_i + b_j).
+            let outer = ei.bounding_radius() + ej.bounding_radius();
+            let far = dot(&r, &r).sqrt() / outer;
+            if far >= skip_above {
+                allow(far);
+                return Some(None);
+            }
+            let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
+            let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
+            allow(mu1);
+            Some(force)
+        };
+        (self.energy, self.overlaps, self.min_mu1, self.tested) = (0.0, 0, f64::INFINITY, 0);
         let chunks = pairs.chunks(CHUNK).zip(self.allowance.chunks_mut(CHUNK));
         for (pairs, allowance) in chunks {
-            let found = pairs
-                .par_iter()
-                .zip(allowance.par_iter_mut())
-                .with_min_len(PAIRS_PER_TASK)
-                .filter_map(|(p, allowance)| {
-                    let (i, j) = (p.i as usize, p.j as usize);
-                    let spent = motion[i] + motion[j];
-                    if spent <= f64::from(*allowance) {
-                        return None;
+            let tasks = pairs.len().div_ceil(PAIRS_PER_TASK);
+            if self.found.len() < tasks {
+                self.found.resize_with(tasks, Found::default);
+            }
+            // Each task fills its own buffer, kept from step to step: no allocation,
+            // and the hits come out in pair order whatever the threads.
+            (pairs.par_chunks(PAIRS_PER_TASK))
+                .zip(allowance.par_chunks_mut(PAIRS_PER_TASK))
+                .zip(self.found[..tasks].par_iter_mut())
+                .for_each(|((pairs, allowance), found)| {
+                    found.hits.clear();
+                    found.tested = 0;
+                    for (p, allowance) in pairs.iter().zip(allowance) {
+                        if let Some(force) = test(p, allowance) {
+                            found.tested += 1;
+                            if let Some(f) = force {
+                                found.hits.push((p.i, p.j, f));
+                            }
+                        }
                     }
-                    tested.fetch_add(1, Ordering::Relaxed);
-                    let (ei, ej) = (&shapes[i], &shapes[j]);
-                    let inner = ei.inscribed_radius() + ej.inscribed_radius();
-                    let mut allow =
-                        |m: f64| *allowance = round_down((m - skip_above) * inner + spent);
-                    let r = relative(centres, p, shape);
-                    // The gauge of a body inside the ball of radius b_i + b_j is at least
-                    // |r| / (b_i + b_j).
-                    let outer = ei.bounding_radius() + ej.bounding_radius();
-                    let far = dot(&r, &r).sqrt() / outer;
-                    if far >= skip_above {
-                        allow(far);
-                        return None;
-                    }
-                    let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
-                    let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
-                    allow(mu1);
-                    force.map(|f| (p.i, p.j, f))
                 });
-            // Collected in pair order whatever the threads (rayon keeps the order).
-            self.hits.clear();
-            self.hits.par_extend(found);
-            for &(i, j, h) in &self.hits {
-                let (i, j) = (i as usize, j as usize);
-                self.overlaps += 1;
-                self.min_mu1 = self.min_mu1.min(h.mu1);
-                self.energy += h.energy;
-                for k in 0..3 {
-                    self.force[i][k] -= h.force[k];
-                    self.force[j][k] += h.force[k];
-                }
-                if torques {
+            for found in &self.found[..tasks] {
+                self.tested += found.tested;
+                for &(i, j, h) in &found.hits {
+                    let (i, j) = (i as usize, j as usize);
+                    self.overlaps += 1;
+                    self.min_mu1 = self.min_mu1.min(h.mu1);
+                    self.energy += h.energy;
                     for k in 0..3 {
-                        self.torque[i][k] += h.torque_i[k];
-                        self.torque[j][k] += h.torque_j[k];
+                        self.force[i][k] -= h.force[k];
+                        self.force[j][k] += h.force[k];
+                    }
+                    if torques {
+                        for k in 0..3 {
+                            self.torque[i][k] += h.torque_i[k];
+                            self.torque[j][k] += h.torque_j[k];
+                        }
                     }
                 }
             }
         }
-        self.tested = tested.into_inner();
         self.wall_hits = 0;
         if state.domain.boundary == Boundary::Reflecting {
             self.walls(state, big_s, torques);
@@ -271,88 +285,6 @@ impl Forces {
     }
 }
 
-/// μ₁ of one candidate pair, and its force and torques at scale `big_s` (`None` when
-/// it does not overlap there). `radii` are given when both grains are spheres.
-fn pair_force(
-    r: &[f64; 3],
-    (ei, ej): (&PreparedEllipsoid, &PreparedEllipsoid),
-    radii: Option<(f64, f64)>,
-    big_s: f64,
-    p: &Pair,
-) -> (f64, Option<PairForce>) {
-    let reach = big_s * (ei.inscribed_radius() + ej.inscribed_radius());
-    let w = reach * reach;
-    let g = if let Some((ri, rj)) = radii {
-        sphere_geometry(r, ri, rj)
-    } else {
-        contact_geometry_fast_prepared(r, ei, ej).ok()
-    };
-    let Some(g) = g.filter(|g| g.mu2.is_finite()) else {
-        // Coincident centres (or a pair the contact function cannot handle, which
-        // the scene's validated shapes do not produce): push apart along a fixed
-        // direction with the force of a full overlap.
-        let n = fallback_direction(p.i, p.j);
-        let force = PairForce {
-            force: n.map(|x| 2.0 * reach * x),
-            torque_i: [0.0; 3],
-            torque_j: [0.0; 3],
-            energy: w,
-            mu1: 0.0,
-        };
-        return (0.0, Some(force));
-    };
-    let mu1 = g.mu2.sqrt();
-    let mu = mu1 / big_s;
-    if mu >= 1.0 {
-        return (mu1, None);
-    }
-    let rn = dot(r, &g.normal);
-    // −∂U/∂r = 2 w (1 − μ) ∇μ, ∇μ = μ n / (r·n).
-    let scale = 2.0 * w * (1.0 - mu) * mu / rn;
-    let force = g.normal.map(|x| scale * x);
-    let pj = [0, 1, 2].map(|k| g.point[k] - r[k]);
-    let force = PairForce {
-        force,
-        torque_i: cross(&g.point, &force.map(|x| -x)),
-        torque_j: cross(&pj, &force),
-        energy: pair_energy(reach, mu),
-        mu1,
-    };
-    (mu1, Some(force))
-}
-
-/// The overlap energy of a pair whose bodies, scaled by `big_s`, overlap with gauge
-/// `μ = μ₁ / big_s < 1`: `w (1 − μ)²` with `w = reach²`, `reach = big_s (ρ_i + ρ_j)`
-/// (inscribed radii). The swap moves (`unjam`) judge with the same energy.
-pub(crate) fn pair_energy(reach: f64, mu: f64) -> f64 {
-    reach * reach * (1.0 - mu) * (1.0 - mu)
-}
-
-/// Two spheres need no contact function: `μ = d / (R_i + R_j)`, normal `r/d`, and
-/// they touch at `R_i r / (R_i + R_j)` from the first centre. `None` at `d = 0`.
-fn sphere_geometry(r: &[f64; 3], ri: f64, rj: f64) -> Option<ContactGeometry> {
-    let d = dot(r, r).sqrt();
-    if d == 0.0 {
-        return None;
-    }
-    let mu = d / (ri + rj);
-    Some(ContactGeometry {
-        mu2: mu * mu,
-        lambda: ri / (ri + rj),
-        point: r.map(|x| x * ri / (ri + rj)),
-        normal: r.map(|x| x / d),
-        gap: d - (ri + rj),
-    })
-}
-
-pub(crate) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 /// `x` in `f32`, rounded down: an allowance never grows by its rounding.
 fn round_down(x: f64) -> f32 {
     let y = x as f32;
@@ -367,27 +299,9 @@ fn round_down(x: f64) -> f32 {
 /// overlapping pairs' contributions (about 100 bytes each) whatever the scene's size.
 const CHUNK: usize = 1 << 18;
 
-/// Pairs one rayon task takes at least: one pair is a single contact-function call, too
-/// little work to be worth a task of its own.
-const PAIRS_PER_TASK: usize = 256;
-
-/// `2^64 / φ` (odd): multiplying by it spreads consecutive ids over all 64 bits.
-const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
-/// splitmix64's first mixing multiplier (Steele, Lea and Flood 2014).
-const SPLITMIX_MUL: u64 = 0xBF58_476D_1CE4_E5B9;
-
-/// A unit vector that depends only on the pair's ids (a hash), for coincident centres.
-fn fallback_direction(i: u32, j: u32) -> [f64; 3] {
-    let mut h = (u64::from(i) << 32 | u64::from(j)).wrapping_mul(GOLDEN_GAMMA);
-    let mut coord = || {
-        h ^= h >> 29;
-        h = h.wrapping_mul(SPLITMIX_MUL);
-        (h >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let v = [coord(), coord(), coord()];
-    let n = dot(&v, &v).sqrt().max(f64::MIN_POSITIVE);
-    v.map(|x| x / n)
-}
+/// Pairs one rayon task takes: one pair is a single contact-function call, too little
+/// work to be worth a task of its own.
+const PAIRS_PER_TASK: usize = 1024;
 
 #[cfg(test)]
 mod tests;

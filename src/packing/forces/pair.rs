@@ -1,0 +1,115 @@
+//! One candidate pair: its contact factor, and the force and torques of its overlap.
+
+use crate::contact::{contact_geometry_fast_prepared, dot, ContactGeometry, PreparedEllipsoid};
+use crate::octree::Pair;
+
+/// What one overlapping pair contributes.
+#[derive(Clone, Copy)]
+pub(super) struct PairForce {
+    /// Force on the second grain (the first gets its opposite).
+    pub force: [f64; 3],
+    pub torque_i: [f64; 3],
+    pub torque_j: [f64; 3],
+    pub energy: f64,
+    pub mu1: f64,
+}
+
+/// μ₁ of one candidate pair, and its force and torques at scale `big_s` (`None` when
+/// it does not overlap there). `radii` are given when both grains are spheres.
+pub(super) fn pair_force(
+    r: &[f64; 3],
+    (ei, ej): (&PreparedEllipsoid, &PreparedEllipsoid),
+    radii: Option<(f64, f64)>,
+    big_s: f64,
+    p: &Pair,
+) -> (f64, Option<PairForce>) {
+    let reach = big_s * (ei.inscribed_radius() + ej.inscribed_radius());
+    let w = reach * reach;
+    let g = if let Some((ri, rj)) = radii {
+        sphere_geometry(r, ri, rj)
+    } else {
+        contact_geometry_fast_prepared(r, ei, ej).ok()
+    };
+    let Some(g) = g.filter(|g| g.mu2.is_finite()) else {
+        // Coincident centres (or a pair the contact function cannot handle, which
+        // the scene's validated shapes do not produce): push apart along a fixed
+        // direction with the force of a full overlap.
+        let n = fallback_direction(p.i, p.j);
+        let force = PairForce {
+            force: n.map(|x| 2.0 * reach * x),
+            torque_i: [0.0; 3],
+            torque_j: [0.0; 3],
+            energy: w,
+            mu1: 0.0,
+        };
+        return (0.0, Some(force));
+    };
+    let mu1 = g.mu2.sqrt();
+    let mu = mu1 / big_s;
+    if mu >= 1.0 {
+        return (mu1, None);
+    }
+    let rn = dot(r, &g.normal);
+    // −∂U/∂r = 2 w (1 − μ) ∇μ, ∇μ = μ n / (r·n).
+    let scale = 2.0 * w * (1.0 - mu) * mu / rn;
+    let force = g.normal.map(|x| scale * x);
+    let pj = [0, 1, 2].map(|k| g.point[k] - r[k]);
+    let force = PairForce {
+        force,
+        torque_i: cross(&g.point, &force.map(|x| -x)),
+        torque_j: cross(&pj, &force),
+        energy: pair_energy(reach, mu),
+        mu1,
+    };
+    (mu1, Some(force))
+}
+
+/// The overlap energy of a pair whose bodies, scaled by `big_s`, overlap with gauge
+/// `μ = μ₁ / big_s < 1`: `w (1 − μ)²` with `w = reach²`, `reach = big_s (ρ_i + ρ_j)`
+/// (inscribed radii). The swap moves (`unjam`) judge with the same energy.
+pub(crate) fn pair_energy(reach: f64, mu: f64) -> f64 {
+    reach * reach * (1.0 - mu) * (1.0 - mu)
+}
+
+/// Two spheres need no contact function: `μ = d / (R_i + R_j)`, normal `r/d`, and
+/// they touch at `R_i r / (R_i + R_j)` from the first centre. `None` at `d = 0`.
+fn sphere_geometry(r: &[f64; 3], ri: f64, rj: f64) -> Option<ContactGeometry> {
+    let d = dot(r, r).sqrt();
+    if d == 0.0 {
+        return None;
+    }
+    let mu = d / (ri + rj);
+    Some(ContactGeometry {
+        mu2: mu * mu,
+        lambda: ri / (ri + rj),
+        point: r.map(|x| x * ri / (ri + rj)),
+        normal: r.map(|x| x / d),
+        gap: d - (ri + rj),
+    })
+}
+
+pub(crate) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `2^64 / φ` (odd): multiplying by it spreads consecutive ids over all 64 bits.
+const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
+/// splitmix64's first mixing multiplier (Steele, Lea and Flood 2014).
+const SPLITMIX_MUL: u64 = 0xBF58_476D_1CE4_E5B9;
+
+/// A unit vector that depends only on the pair's ids (a hash), for coincident centres.
+fn fallback_direction(i: u32, j: u32) -> [f64; 3] {
+    let mut h = (u64::from(i) << 32 | u64::from(j)).wrapping_mul(GOLDEN_GAMMA);
+    let mut coord = || {
+        h ^= h >> 29;
+        h = h.wrapping_mul(SPLITMIX_MUL);
+        (h >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let v = [coord(), coord(), coord()];
+    let n = dot(&v, &v).sqrt().max(f64::MIN_POSITIVE);
+    v.map(|x| x / n)
+}
