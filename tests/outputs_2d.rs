@@ -88,6 +88,7 @@ fn plane_run(dir: &Path) -> (Scene, RunResult, Vec<f64>) {
         fraction: 0.0,
         stop: StopReason::TargetReached,
         counters: Counters::default(),
+        trials: Vec::new(),
         verification,
     };
     let statistics = Statistics::new(&scene, &specs, &packing);

@@ -9,7 +9,7 @@ use super::grains::rotate_by;
 use super::jamming::{JamTest, Patience, Verdict};
 use super::neighbours::Neighbours;
 use super::state::State;
-use super::{Counters, FireParams, PackError, Progress};
+use super::{Counters, FireParams, PackError, Progress, Trial};
 use crate::contact::dot;
 use crate::scene::{Boundary, Rotation};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -33,11 +33,13 @@ pub(crate) struct Context<'a> {
     /// When `packing.time_limit` runs out: a relaxation then stops as at `stop`.
     pub deadline: Option<Instant>,
     pub progress: &'a mut dyn FnMut(&Progress),
+    /// The loop's relaxations so far, one per trial scale.
+    pub trials: Vec<Trial>,
 }
 
 /// How a relaxation ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Outcome {
+pub enum Outcome {
     /// Every pair apart at the real scale (μ ≥ 1 + contact gap), every grain inside.
     Clean,
     /// The energy per grain converged to a positive plateau: the grains are jammed at
@@ -47,6 +49,18 @@ pub(crate) enum Outcome {
     Budget,
     /// The caller asked to stop, or the time limit ran out.
     Interrupted,
+}
+
+impl Outcome {
+    /// Its name in `summary.json`: `"clean"`, `"stuck"`, `"budget"`, `"interrupted"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Clean => "clean",
+            Outcome::Stuck => "stuck",
+            Outcome::Budget => "budget",
+            Outcome::Interrupted => "interrupted",
+        }
+    }
 }
 
 /// The integrator's state: velocities (angular ones in length units, `ω × L`) and the

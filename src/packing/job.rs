@@ -1,7 +1,7 @@
 //! What goes into [`pack`](super::pack) and what comes out: the job, the progress it
 //! reports, its counters, its result and its errors.
 
-use super::PackedGrain;
+use super::{Outcome, PackedGrain};
 use super::{StopReason, Tuning, TuningError};
 use crate::contact::ShapeError;
 use crate::octree::OctreeError;
@@ -43,6 +43,23 @@ pub struct Counters {
     pub swaps: u64,
 }
 
+/// One relaxation of the loop at a trial scale (the recompression cycles' unjamming
+/// moves and the turn back are not trials).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Trial {
+    /// The trial scale (1 = target sizes).
+    pub scale: f64,
+    /// The packing fraction at that scale.
+    pub fraction: f64,
+    /// How the relaxation ended.
+    pub outcome: Outcome,
+    /// Its FIRE steps.
+    pub fire_steps: u64,
+    /// The overlap energy per grain at its last step (at the scale inflated by the
+    /// [`margin`](super::ProtocolParams::margin)).
+    pub energy_per_grain: f64,
+}
+
 /// The outcome of [`pack`](super::pack).
 #[derive(Debug, Clone)]
 pub struct Packing {
@@ -56,6 +73,8 @@ pub struct Packing {
     pub stop: StopReason,
     /// What the loop did.
     pub counters: Counters,
+    /// Its relaxations at the trial scales, in order: where the FIRE steps went.
+    pub trials: Vec<Trial>,
     /// The exact check of the written state.
     pub verification: Verification,
 }

@@ -70,8 +70,9 @@ mod unjam;
 mod verify;
 
 pub use effort::MIN_CYCLE_EFFORT;
+pub use fire::Outcome;
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
-pub use job::{Counters, Job, PackError, Packing, Progress, Verification};
+pub use job::{Counters, Job, PackError, Packing, Progress, Trial, Verification};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
 pub use verify::{verify, MIN_GAP_REACH};
 
@@ -80,7 +81,7 @@ use effort::{
     recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW, QUENCH_LIMIT,
     QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
-use fire::{Context, Fire, Outcome};
+use fire::{Context, Fire};
 use jamming::Patience;
 use neighbours::Neighbours;
 use snapshot::{finish, restore, Snapshot};
@@ -136,6 +137,7 @@ pub fn pack(
         stop,
         deadline: (params.time_limit).map(|t| Instant::now() + Duration::from_secs_f64(t)),
         progress,
+        trials: Vec::new(),
     };
     let mut fire = Fire::new(tuning.fire);
     // The best clean state (scale, centres, orientations) and the smallest stuck scale.
@@ -176,6 +178,7 @@ pub fn pack(
         } else {
             Patience::NONE
         };
+        let before = run.counters.fire_steps;
         let outcome = fire.relax(
             &mut state,
             &mut run,
@@ -183,6 +186,13 @@ pub fn pack(
             s * (1.0 + protocol.margin),
             left.min(budget),
         )?;
+        run.trials.push(Trial {
+            scale: s,
+            fraction: state.fraction(s),
+            outcome,
+            fire_steps: run.counters.fire_steps - before,
+            energy_per_grain: run.forces.energy / state.len() as f64,
+        });
         match outcome {
             Outcome::Interrupted => break interrupted(&run),
             Outcome::Clean => best = Some(Snapshot::of(&state, s.min(1.0))),
@@ -266,11 +276,13 @@ pub fn pack(
         }
     }
     // The loop's buffers go before the check builds its own.
-    let counters = run.counters;
+    let (counters, trials) = (run.counters, std::mem::take(&mut run.trials));
     drop((run, fire));
-    finish(
+    let mut packing = finish(
         specs, &order, &mut state, snapshot, reason, counters, params.gap,
-    )
+    )?;
+    packing.trials = trials;
+    Ok(packing)
 }
 
 /// The largest scale up to `s` at which the current state is clean: every pair apart

@@ -71,6 +71,7 @@ pub(super) fn finish(
         fraction,
         stop,
         counters,
+        trials: Vec::new(),
         verification,
     })
 }

@@ -69,6 +69,27 @@ fn fixed_orientations_stay_as_drawn_and_the_jammed_state_is_clean() {
     }
 }
 
+/// The trials account for every relaxation and FIRE step of a run without unjamming
+/// moves, and bracket the state kept: no clean trial beyond it, no stuck one below.
+#[test]
+fn the_trials_say_where_every_fire_step_went() {
+    let (p, _) = pack_scene(DENSE_SPHEROIDS, Rotation::None);
+    assert_eq!(p.trials.len() as u64, p.counters.steps);
+    let steps: u64 = p.trials.iter().map(|t| t.fire_steps).sum();
+    assert_eq!(steps, p.counters.fire_steps);
+    assert_eq!(p.trials[0].scale, 1.0);
+    for t in &p.trials {
+        match t.outcome {
+            Outcome::Clean => assert!(t.scale <= p.scale, "{t:?} beyond {}", p.scale),
+            Outcome::Stuck | Outcome::Budget => assert!(t.scale > p.scale, "{t:?}"),
+            Outcome::Interrupted => panic!("{t:?}"),
+        }
+        assert!(t.fraction > 0.0 && t.energy_per_grain >= 0.0, "{t:?}");
+    }
+    let stuck = p.trials.iter().filter(|t| t.outcome != Outcome::Clean);
+    assert!(stuck.count() >= 1);
+}
+
 #[track_caller]
 fn assert_clean_and_denser(turned: &Packing, fixed: &Packing, gap: f64) {
     assert!(turned.verification.is_clean(), "{:?}", turned.verification);

@@ -246,6 +246,7 @@ mod tests {
             fraction: 0.0,
             stop: StopReason::TargetReached,
             counters: Counters::default(),
+            trials: Vec::new(),
             verification: Verification {
                 gap: 0.0,
                 checked_pairs: 0,

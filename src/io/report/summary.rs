@@ -67,6 +67,8 @@ pub struct Summary<'a> {
     pub timings: TimingSummary,
     /// What the loop did.
     pub counters: CounterSummary,
+    /// Its relaxations at the trial scales, in order: where the FIRE steps went.
+    pub trials: Vec<TrialSummary>,
     /// Whether and how far grains turned from their drawn orientations.
     pub rotation: &'a TurnStatistics,
     /// Per phase, in scene order.
@@ -128,6 +130,23 @@ pub struct CounterSummary {
     pub swaps: u64,
 }
 
+/// One relaxation of the loop ([`Trial`](crate::packing::Trial)).
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct TrialSummary {
+    /// The trial scale (1 = target sizes).
+    pub scale: f64,
+    /// The packing fraction at that scale.
+    pub fraction: f64,
+    /// How it ended: `"clean"` (every pair apart), `"stuck"` (jammed: the energy sat on
+    /// a plateau, or a shallow relaxation ran out of patience), `"budget"` (out of
+    /// steps) or `"interrupted"`.
+    pub outcome: &'static str,
+    /// Its FIRE steps.
+    pub fire_steps: u64,
+    /// Overlap energy per grain at its last step.
+    pub energy_per_grain: f64,
+}
+
 impl<'a> Summary<'a> {
     /// The summary of `result`, a run of `scene`, whose other outputs took `outputs`
     /// seconds to write and rendered the RVE as `rve` (when one was written), with its
@@ -185,6 +204,15 @@ impl<'a> Summary<'a> {
                 pairs_tested: c.pairs_tested,
                 swaps: c.swaps,
             },
+            trials: (packing.trials.iter())
+                .map(|t| TrialSummary {
+                    scale: t.scale,
+                    fraction: t.fraction,
+                    outcome: t.outcome.name(),
+                    fire_steps: t.fire_steps,
+                    energy_per_grain: t.energy_per_grain,
+                })
+                .collect(),
             rotation: &statistics.rotation,
             phases: &statistics.phases,
             plane: statistics.plane.as_ref(),
