@@ -77,6 +77,30 @@ pub(super) fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
     ((protocol.trial_steps as f64 * effort.min(1.0)).ceil() as u64).max(1)
 }
 
+/// The patience of a deep relaxation before the search (module `jamming`): below
+/// `effort = 1`, [`DEEP_PATIENCE`] trials' budgets ([`trial_steps`]); from 1 on none,
+/// and a deep relaxation runs to its plateau.
+pub(super) fn deep_patience(protocol: &ProtocolParams, effort: f64) -> u64 {
+    if effort < 1.0 {
+        DEEP_PATIENCE * trial_steps(protocol, effort)
+    } else {
+        u64::MAX
+    }
+}
+
+/// Below `effort = 1`, a deep relaxation before the search (the target far above the
+/// jamming point) counts as jammed after this many trials' budgets ([`trial_steps`]:
+/// 400 FIRE steps at `effort = 0.1`), plateau or not: the search needs a jammed state
+/// to shrink and start from, not its plateau, which takes 1 300–2 300 steps from
+/// random positions at 0.70. 10 000 grains at full size 0.70, `effort = 0.1`, one
+/// thread, seeds 1 and 2: equal spheres 0.6368–0.6369 in 938–1 000 FIRE steps
+/// instead of 0.6401–0.6405 in 1 731–1 881, lognormal spheres (σ 0.25) 0.6528–0.6534
+/// in 926–1 031 instead of 0.6562–0.6571 in 1 953–2 597, frozen spheroids of aspect
+/// 1.5 0.6258 in 1 134 instead of 0.6283 in 1 593 (BENCHMARKS.md, "Issue 27, fourth
+/// round"): half the time for 0.003 of density, where `effort = 0.1` is asked for
+/// the fastest answer. Starts just above the jamming point (shallow) are untouched.
+pub(super) const DEEP_PATIENCE: u64 = 4;
+
 /// The recompression cycles of `effort`: `⌊CYCLES_PER_EFFORT · (effort − 1)⌋`, none
 /// below 1.5. Once the bisection has found the jamming point, the state is compressed
 /// (by [`recompression`]), relaxed, and the jamming point bisected again from there, the

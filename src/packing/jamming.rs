@@ -79,22 +79,27 @@ pub(crate) const DEEP: f64 = 1000.0;
 pub(crate) const CREEP: f64 = 1.0;
 
 /// When a shallow relaxation counts as jammed (module docs): from `creeping` steps on
-/// while it creeps ([`CREEP`]), from `any` steps on whatever its slope.
+/// while it creeps ([`CREEP`]), from `any` steps on whatever its slope; and from
+/// `deep` steps on, a deep one too, plateau or not (the loop gives one below
+/// `effort = 1`: see `DEEP_PATIENCE` in `packing/effort.rs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Patience {
     pub creeping: u64,
     pub any: u64,
+    pub deep: u64,
 }
 
 impl Patience {
-    /// No patience: a shallow relaxation runs to its plateau or its budget.
+    /// No patience: a relaxation runs to its plateau or its budget.
     pub const NONE: Self = Self::of(u64::MAX);
 
-    /// The same patience whatever the slope.
+    /// The same patience for shallow relaxations whatever the slope; deep ones run to
+    /// their plateau.
     pub const fn of(steps: u64) -> Self {
         Self {
             creeping: steps,
             any: steps,
+            deep: u64::MAX,
         }
     }
 }
@@ -186,9 +191,12 @@ impl JamTest {
         let energy = self.minima[now];
         let plateau = energy > 0.0 && latest < self.slope && latest <= before;
         let overlapping = || self.overlaps[mid..].iter().all(|&o| o > self.near_clean);
-        let out_of_patience = !self.is_deep(energy)
-            && (self.steps >= self.patience.any
-                || (self.steps >= self.patience.creeping && latest < CREEP));
+        let out_of_patience = if self.is_deep(energy) {
+            self.steps >= self.patience.deep
+        } else {
+            self.steps >= self.patience.any
+                || (self.steps >= self.patience.creeping && latest < CREEP)
+        };
         if (plateau && (energy > self.floor || overlapping())) || out_of_patience {
             Verdict::Jammed
         } else {
@@ -292,9 +300,37 @@ mod tests {
         let patience = Patience {
             creeping: 100,
             any: 1000,
+            deep: u64::MAX,
         };
         let mut test = JamTest::new(WINDOW, SLOPE, 4e-6, RESOLUTION, patience);
         assert!((1..=600u64).all(|t| test.step(clearing(t as f64), 0.0) == Verdict::Relaxing));
+    }
+
+    /// With a deep patience (below `effort = 1`), a deep relaxation still settling is
+    /// jammed at the first window end from it; a shallow one keeps its own patience.
+    #[test]
+    fn a_deep_relaxation_is_jammed_at_its_deep_patience() {
+        let patience = Patience {
+            creeping: 100,
+            any: 1000,
+            deep: 300,
+        };
+        let first = |e: &dyn Fn(f64) -> f64| {
+            let mut test = JamTest::new(WINDOW, SLOPE, 4e-6, RESOLUTION, patience);
+            (1..=100_000u64).find(|&t| test.step(e(t as f64), 0.0) == Verdict::Jammed)
+        };
+        // 4 000 margin energies and still falling: a plateau only after 2 000 steps.
+        let settling = |t: f64| 1.6e-2 * (1.0 + (t / 500.0).powf(-0.25) * (-t / 2000.0).exp());
+        // Judged from MIN_WINDOWS windows on, as every relaxation.
+        assert_eq!(first(&settling), Some(WINDOW * MIN_WINDOWS as u64));
+        // A shallow creep is cut at its creeping patience's first judged window.
+        let creep = |t: f64| 1.6e-3 * (t / 500.0).powf(-0.25);
+        assert_eq!(first(&creep), Some(WINDOW * MIN_WINDOWS as u64));
+        // Without it, the deep one goes on to its plateau.
+        let mut test = JamTest::new(WINDOW, SLOPE, 4e-6, RESOLUTION, Patience::of(1000));
+        let plateau =
+            (1..=100_000u64).find(|&t| test.step(settling(t as f64), 0.0) == Verdict::Jammed);
+        assert!(plateau.is_some_and(|t| t > 2000), "{plateau:?}");
     }
 
     /// An energy converging to a positive plateau is jammed soon after it settles, not

@@ -24,8 +24,10 @@
 //!    relaxations slow down without end (critical slowing down), so each trial below
 //!    the target has a budget of [`trial_steps`](ProtocolParams::trial_steps) steps
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
-//!    counts as jammed at that scale. A first jam that is *shallow* (the target just
-//!    above the jamming point: the relaxation from random positions creeps, and is cut
+//!    counts as jammed at that scale (below `effort = 1`, so does the target's own
+//!    relaxation far above the jamming point, *deep*, after four such budgets). A
+//!    first jam that is *shallow* (the target just above the jamming point: the
+//!    relaxation from random positions creeps, and is cut
 //!    after [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by
 //!    the jamming test's patience) sets no bound (from `effort` 0.5 on; below, the
 //!    search starts from it): the state is compressed by 2 % of scale and relaxed
@@ -78,8 +80,8 @@ pub use verify::{verify, MIN_GAP_REACH};
 
 use crate::scene::{Boundary, Rotation};
 use effort::{
-    recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW, QUENCH_LIMIT,
-    QUENCH_MIN_EFFORT, QUENCH_STEP,
+    deep_patience, recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW,
+    QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
 use fire::{Context, Fire};
 use jamming::Patience;
@@ -169,11 +171,13 @@ pub fn pack(
             trial_steps(&protocol, params.effort)
         };
         // Shallow relaxations from random positions creep (module `jamming`); below
-        // `effort = 1` a creeping one is cut as soon as a trial's budget runs out.
+        // `effort = 1` a creeping one is cut as soon as a trial's budget runs out, and
+        // a deep one after `DEEP_PATIENCE` budgets.
         fire.patience = if quenching {
             Patience {
                 creeping: trial_steps(&protocol, params.effort),
                 any: protocol.trial_steps,
+                deep: deep_patience(&protocol, params.effort),
             }
         } else {
             Patience::NONE
