@@ -55,6 +55,11 @@ def test_the_example_packs_without_overlap_by_an_independent_check(example):
     volume = np.sum(4 / 3 * np.pi * np.prod(p.semi_axes, axis=1)) / 65.0**3
     assert abs(volume - s["packing_fraction"]) <= 1e-12
     assert s["grains"] == n and s["seed"] == 7
+    # Where the steps went: one trial per relaxation, the last one clean at the target.
+    trials = s["trials"]
+    assert len(trials) == s["counters"]["steps"]
+    assert sum(t["fire_steps"] for t in trials) == s["counters"]["fire_steps"]
+    assert trials[-1]["outcome"] == "clean" and trials[-1]["scale"] == 1.0
 
 
 def test_write_produces_the_clis_files_for_the_same_seed(example, pack_cli, tmp_path):

@@ -9,7 +9,7 @@ use super::grains::rotate_by;
 use super::jamming::{JamTest, Patience, Verdict};
 use super::neighbours::Neighbours;
 use super::state::State;
-use super::{Counters, FireParams, PackError, Progress, Trial};
+use super::{Counters, FireParams, Outcome, PackError, Progress, Trial};
 use crate::contact::dot;
 use crate::scene::{Boundary, Rotation};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -35,32 +35,6 @@ pub(crate) struct Context<'a> {
     pub progress: &'a mut dyn FnMut(&Progress),
     /// The loop's relaxations so far, one per trial scale.
     pub trials: Vec<Trial>,
-}
-
-/// How a relaxation ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Outcome {
-    /// Every pair apart at the real scale (μ ≥ 1 + contact gap), every grain inside.
-    Clean,
-    /// The energy per grain converged to a positive plateau: the grains are jammed at
-    /// this scale (the test of [`jamming`](super::jamming)).
-    Stuck,
-    /// The step budget ran out.
-    Budget,
-    /// The caller asked to stop, or the time limit ran out.
-    Interrupted,
-}
-
-impl Outcome {
-    /// Its name in `summary.json`: `"clean"`, `"stuck"`, `"budget"`, `"interrupted"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Outcome::Clean => "clean",
-            Outcome::Stuck => "stuck",
-            Outcome::Budget => "budget",
-            Outcome::Interrupted => "interrupted",
-        }
-    }
 }
 
 /// The integrator's state: velocities (angular ones in length units, `ω × L`) and the

@@ -1,7 +1,7 @@
 //! What goes into [`pack`](super::pack) and what comes out: the job, the progress it
 //! reports, its counters, its result and its errors.
 
-use super::{Outcome, PackedGrain};
+use super::PackedGrain;
 use super::{StopReason, Tuning, TuningError};
 use crate::contact::ShapeError;
 use crate::octree::OctreeError;
@@ -41,6 +41,32 @@ pub struct Counters {
     pub response: Duration,
     /// Swaps of grains kept by the unjamming moves (`packing.unjam = "swap"`).
     pub swaps: u64,
+}
+
+/// How a relaxation ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// Every pair apart at the real scale (μ ≥ 1 + contact gap), every grain inside.
+    Clean,
+    /// The energy per grain converged to a positive plateau: the grains are jammed at
+    /// this scale (the test of [`jamming`](super::jamming)).
+    Stuck,
+    /// The step budget ran out.
+    Budget,
+    /// The caller asked to stop, or the time limit ran out.
+    Interrupted,
+}
+
+impl Outcome {
+    /// Its name in `summary.json`: `"clean"`, `"stuck"`, `"budget"`, `"interrupted"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Clean => "clean",
+            Outcome::Stuck => "stuck",
+            Outcome::Budget => "budget",
+            Outcome::Interrupted => "interrupted",
+        }
+    }
 }
 
 /// One relaxation of the loop at a trial scale (the recompression cycles' unjamming

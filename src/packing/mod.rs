@@ -72,9 +72,8 @@ mod unjam;
 mod verify;
 
 pub use effort::MIN_CYCLE_EFFORT;
-pub use fire::Outcome;
 pub use grains::{sorted_turns, turn_angle, turn_vector, PackedGrain, StopReason};
-pub use job::{Counters, Job, PackError, Packing, Progress, Trial, Verification};
+pub use job::{Counters, Job, Outcome, PackError, Packing, Progress, Trial, Verification};
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
 pub use verify::{verify, MIN_GAP_REACH};
 

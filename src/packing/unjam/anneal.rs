@@ -16,8 +16,9 @@
 //! and swap cycles at 0.888 (BENCHMARKS.md, "Annealing").
 
 use super::monte_carlo::{MonteCarlo, Moves};
-use crate::packing::fire::{Context, Fire, Outcome};
+use crate::packing::fire::{Context, Fire};
 use crate::packing::state::State;
+use crate::packing::Outcome;
 use crate::packing::{clean_scale, PackError, ProtocolParams};
 use rand_chacha::ChaCha8Rng;
 

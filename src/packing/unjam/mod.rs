@@ -36,8 +36,9 @@ mod anneal;
 mod monte_carlo;
 mod swap;
 
-use super::fire::{Context, Fire, Outcome};
+use super::fire::{Context, Fire};
 use super::state::State;
+use super::Outcome;
 use super::{PackError, ProtocolParams};
 use crate::scene::Unjam;
 use rand::{Rng, SeedableRng};
