@@ -48,8 +48,9 @@ pub struct Counters {
 pub enum Outcome {
     /// Every pair apart at the real scale (μ ≥ 1 + contact gap), every grain inside.
     Clean,
-    /// The energy per grain converged to a positive plateau: the grains are jammed at
-    /// this scale (the test of [`jamming`](super::jamming)).
+    /// The grains are jammed at this scale: the energy per grain converged to a
+    /// positive plateau, or a relaxation before the search ran out of its patience
+    /// (the jamming test of `packing/jamming.rs`).
     Stuck,
     /// The step budget ran out.
     Budget,
