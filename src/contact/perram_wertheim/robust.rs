@@ -214,19 +214,75 @@ fn maximise(n: &[f64; 5], c: &[f64; 5], odds: f64) -> Result<Maximum, ContactErr
     }
     let (nr, cr) = (reversed(n), reversed(c));
     // The root lies above ½ if ψ(½) > 0: mirrored, it lies in (0, ½].
-    let mirrored = psi(n, c, 1.0).0 > 0.0;
-    let (n, c) = if mirrored { (&nr, &cr) } else { (n, c) };
-    let (value, y, stop, iterations) = root(n, c, if mirrored { 1.0 / odds } else { odds });
-    // λ̂ = y/(1+y) and 1 − λ̂ = 1/(1+y), each to its own relative precision.
-    let (x, rest) = (y / (1.0 + y), 1.0 / (1.0 + y));
-    let (s, t) = if mirrored { (x, rest) } else { (rest, x) };
+    let (slope, size) = psi_at_half(n, c);
+    let half = |mirrored: bool| {
+        let (n, c) = if mirrored { (&nr, &cr) } else { (n, c) };
+        let (value, y, stop, iterations) = root(n, c, if mirrored { 1.0 / odds } else { odds });
+        // λ̂ = y/(1+y) and 1 − λ̂ = 1/(1+y), each to its own relative precision.
+        let (x, rest) = (y / (1.0 + y), 1.0 / (1.0 + y));
+        let (s, t) = if mirrored { (x, rest) } else { (rest, x) };
+        Maximum {
+            value,
+            s,
+            t,
+            stop,
+            iterations,
+        }
+    };
+    if slope.abs() > SLOPE_TOL * size {
+        return Ok(half(slope > 0.0));
+    }
+    // ψ(½) is rounding: F is flat across the middle to an ulp, and its maximum may lie
+    // in either half (within 1e-30 of an end, a few ulps above the middle: fuzz target
+    // `contact_bits_2d`). Both are searched; the larger F is the maximum, and equal ones
+    // take λ̂ = ½ (between them, where quasi-concave F is at least as large), the same
+    // choice for the pair in either order.
+    let (below, above) = (half(false), half(true));
+    let iterations = below.iterations + above.iterations;
+    let stop = match (below.stop, above.stop) {
+        (Stop::Converged, Stop::Converged) => Stop::Converged,
+        _ => Stop::MaxIterations,
+    };
+    let best = if below.value == above.value {
+        Maximum {
+            s: 0.5,
+            t: 0.5,
+            ..below
+        }
+    } else if below.value > above.value {
+        below
+    } else {
+        above
+    };
     Ok(Maximum {
-        value,
-        s,
-        t,
         stop,
         iterations,
+        ..best
     })
+}
+
+/// `ψ(½)` (at `y = 1`) when its sign is at most `SLOPE_TOL` of the sum of its terms'
+/// magnitudes is rounding, and the half of `[0, 1]` that holds the maximum is not
+/// known: each coefficient is a double rounded once from double-double (`ε/2`), each
+/// product `N_i C_j` once more (`3ε/2` in all), and the sum of the 25 terms
+/// `(i − j) N_i C_j` adds at most `12ε` of their magnitudes. Taking the sign of a
+/// rounding-level `ψ(½)` made μ² depend on the order of the pair, by 4.5e-12 (the pair
+/// of defect 12 in `docs/reliability.md`).
+const SLOPE_TOL: f64 = 16.0 * f64::EPSILON;
+
+/// `ψ(½)` and the sum of the magnitudes of its terms, both as in [`psi`] at `y = 1`.
+fn psi_at_half(n: &[f64; 5], c: &[f64; 5]) -> (f64, f64) {
+    let (wn, sn, _) = moments(n, 1.0);
+    let (wc, sc, _) = moments(c, 1.0);
+    let (mut cross, mut size) = (0.0, 0.0);
+    for (i, a) in wn.iter().enumerate() {
+        for (j, b) in wc.iter().enumerate() {
+            let d = i as f64 - j as f64;
+            cross += d * (a * b);
+            size += d.abs() * (a * b);
+        }
+    }
+    (cross / sn / sc, size / sn / sc)
 }
 
 /// The terms `p_k y^{k−l}` (`l` the first index with `p_l > 0`) at `y = x/(1−x)`,
