@@ -508,3 +508,73 @@ fn a_box_the_grains_fill_less_than_a_double_resolves_is_refused_naming_box_size(
     assert!(s.domain.volume() > 0.0);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// fuzz target contact_bits_2d (fifth round, defect 14): a needle of size 7.5e20 and
+/// aspect ratio ~1e6 (its thin pivot 3e-12 of its size, just above
+/// `MIN_RELATIVE_PIVOT`) against an ellipse of 0.03: both orders answered μ² =
+/// 1.30150050382064e31, `Converged`, 2.0e-5 below `tools/contact_exact.py`'s
+/// 1.3015266575024577e31, at λ = 1 − 4.1e-7 instead of 1 − 3.29e-6. The corrector took
+/// a curvature `g′ ≤ 0` (rounding, as `f` is concave) for convergence; it now closes
+/// its bracket on the sign of `g`. One ulp in the data moves μ² by 2.3e-4 here, so the
+/// answer (1.0e-12 and 4e-13 from the exact one) is held to 1e-11, not to ulps; the
+/// two orders still differ by 6.5e-13, beyond `IDENTITY_TOL` (open, `fuzz/open/`).
+#[test]
+fn a_curvature_lost_to_rounding_is_not_taken_for_convergence() {
+    let r = [7.477750072378836e20, 5.754711558261857e20, 0.0];
+    let q1 = [
+        7.477080264586548e20,
+        7.477080264543605e20,
+        0.0,
+        7.477080264523472e20,
+        0.0,
+        7.47708026455501e20,
+    ];
+    let q2 = [
+        0.025132242838541666,
+        0.00047679344813029615,
+        0.0,
+        0.000484719701714185,
+        0.0,
+        0.012808481270127925,
+    ];
+    let exact = 1.3015266575024577e31;
+    for c in [
+        contact_function(&r, &q1, &q2).unwrap(),
+        contact_function(&r.map(|x: f64| -x), &q2, &q1).unwrap(),
+    ] {
+        assert!((c.mu2 - exact).abs() <= 1e-11 * exact, "{c:?}");
+        assert_eq!(c.stop, Stop::Converged);
+    }
+}
+
+/// fuzz target contact_bits_2d (fifth round, a regression of defect 12's fix before it
+/// was committed): `F` flat to an ulp around λ = ½; with both halves searched, one order
+/// found the two maxima equal and answered λ = ½, the other found them an ulp apart and
+/// took the larger one's λ, 0.5000000020. Maxima within `F_TIE_TOL` are now a tie.
+#[test]
+fn lambda_mirrors_where_the_two_halves_maxima_are_an_ulp_apart() {
+    let r = [8.814422105064095e-280, 2.0602110840840086e24, 0.0];
+    let q1 = [
+        1.1931846177412974e23,
+        3.2111828443926037e-308,
+        0.0,
+        2.104900968400905e35,
+        0.0,
+        1.052450484201049e35,
+    ];
+    let q2 = [
+        1.920405099359672e23,
+        3.1985436717098735e-308,
+        0.0,
+        2.1049009684009023e35,
+        0.0,
+        1.0524504842014113e35,
+    ];
+    let one = contact_function(&r, &q1, &q2).unwrap();
+    let other = contact_function(&r.map(|x: f64| -x), &q2, &q1).unwrap();
+    assert_eq!(one.mu2, other.mu2);
+    assert!(
+        (one.lambda - (1.0 - other.lambda)).abs() <= 1e-12,
+        "{one:?} {other:?}"
+    );
+}

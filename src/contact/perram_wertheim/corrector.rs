@@ -117,6 +117,10 @@ pub fn lambda_bound(r12: &Vec3, q1: &Sym3, q2: &Sym3, lambda: f64) -> Option<f64
 /// 0 or 1 the poles nearly cancel and the term can be ~1e3 times that.
 pub const CUBIC_TERM_TOL: f64 = f64::EPSILON / 8.0;
 
+/// The corrector's bracket on λ* is closed when it is at most `BRACKET_CLOSED = 4ε`
+/// of its upper end wide: a few ulps of λ.
+const BRACKET_CLOSED: f64 = 4.0 * f64::EPSILON;
+
 /// The corrector's Newton iteration, bracketed afresh (the predictor's bracket rests on
 /// the rational form's rounding), with the LDLᵀ refinement wherever the adjugate start
 /// is not good enough. Takes the (scaled) pair itself and rebuilds what it needs, so
@@ -147,18 +151,28 @@ pub(super) fn correct_further(
     for _ in 0..MAX_ITERATIONS {
         iterations += 1;
         let v = evaluate(lambda)?;
-        if !(v.gp > 0.0) {
-            return p.finish(v.f, lambda, Stop::Converged, iterations);
-        }
         if let Some((mu2, polished)) = finished(&v, lambda, (lo, hi)) {
             return p.finish(mu2, polished, Stop::Converged, iterations);
         }
         if v.g > 0.0 {
             hi = lambda;
-        } else {
+        } else if v.g < 0.0 {
             lo = lambda;
+        } else {
+            return p.finish(v.f, lambda, Stop::Converged, iterations);
         }
-        let next = lambda - v.g / v.gp;
+        // A curvature lost to rounding (g′ ≤ 0, where f is concave) is no sign of
+        // convergence: the bracket goes on closing on the sign of g, the refined part,
+        // until it is at rounding. (Taking it as converged answered μ² 2e-5 below the
+        // maximum, 3e-6 from it in λ: fuzz target `contact_bits_2d`, defect 14.)
+        if !(v.gp > 0.0) && hi - lo <= BRACKET_CLOSED * hi {
+            return p.finish(v.f, lambda, Stop::Converged, iterations);
+        }
+        let next = if v.gp > 0.0 {
+            lambda - v.g / v.gp
+        } else {
+            f64::NAN
+        };
         lambda = if next > lo && next < hi {
             next
         } else {
