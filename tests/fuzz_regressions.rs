@@ -285,8 +285,11 @@ fn grains_too_small_for_doubles_are_refused_naming_their_size_not_left_to_fail_p
             "{message}"
         );
     }
-    // The limits: a volume of at least 2.2e-308 in 3D, semi-axes of 6.7e-139 in 2D.
-    for (size, d) in [(cube, "1e-102"), (square, "1e-137")] {
+    // The limits: a volume of at least 2.2e-308 in 3D, semi-axes of 6.7e-139 in 2D. The
+    // 3D grains in a box of 1: four of them fill 2.6e-310 of the box of 20, below the
+    // normal doubles, which is refused naming box.size
+    // (a_box_the_grains_fill_less_than_a_double_resolves_is_refused_naming_box_size).
+    for (size, d) in [("[1.0, 1.0, 1.0]", "1e-102"), (square, "1e-137")] {
         let s = Scene::from_str(&scene(size, d), "tiny.toml").unwrap();
         let options = RunOptions {
             threads: std::num::NonZeroUsize::new(1),
@@ -295,4 +298,283 @@ fn grains_too_small_for_doubles_are_refused_naming_their_size_not_left_to_fail_p
         let packed = run(&s, options).unwrap();
         assert!(packed.packing.verification.is_clean(), "d = {d}");
     }
+}
+
+/// fuzz target contact_bits_2d (open defect 4 of the third round, now defect 11): two
+/// ellipses, one of aspect ratio about 1 500, answered λ = 0.9991253311789454 in one
+/// order and 1 − 0.0008746688199113869 in the other, 1.1e-12 apart
+/// (`tools/contact_exact.py`: λ* = 0.9991253311789454, which the first order had).
+/// The corrector's last Newton step, whose gain in μ² was below `GAIN_TOL`, left
+/// `g″Δ²/(2g′)` in λ; λ is now polished to second order. The second pair (λ* =
+/// 0.00084167727405219466) was 1.5e-12 off the same way.
+#[test]
+fn lambda_of_the_swapped_pair_mirrors_where_the_last_newton_step_left_1e_12() {
+    let pairs = [
+        (
+            [1.2394914108467452e-302, 2.0000000011345946, 0.0],
+            [
+                0.11718750000000007,
+                2.6035174472452983e-188,
+                0.0,
+                1.0000000000000566,
+                0.0,
+                0.5585937500000283,
+            ],
+            [
+                1.0000000000145608,
+                1.0,
+                0.0,
+                1.000000845640912,
+                0.0,
+                1.0000004228277364,
+            ],
+            0.9991253311789454,
+        ),
+        (
+            [160056474112.002, 3608985225288.282, 0.0],
+            [
+                156842157700.51764,
+                156842082948.51764,
+                0.0,
+                156842099844.51764,
+                0.0,
+                156842128772.51764,
+            ],
+            [
+                156864775300.51764,
+                8591960136.282352,
+                0.0,
+                156842100070.002,
+                0.0,
+                156853437685.25983,
+            ],
+            0.0008416772740521947,
+        ),
+    ];
+    for (r, q1, q2, exact) in pairs {
+        let one = contact_function(&r, &q1, &q2).unwrap();
+        let other = contact_function(&r.map(|x: f64| -x), &q2, &q1).unwrap();
+        // Mirrored to rounding; λ* itself to 1e-13 (one ulp in the data moves it by
+        // 4.6e-13 and 2.8e-13).
+        assert!(
+            (one.lambda - (1.0 - other.lambda)).abs() <= 4.0 * f64::EPSILON,
+            "{one:?} {other:?}"
+        );
+        assert!((one.lambda - exact).abs() <= 1e-13, "{one:?}");
+        assert!((one.mu2 - other.mu2).abs() <= 4.0 * f64::EPSILON * one.mu2);
+    }
+}
+
+/// fuzz target contact_bits_2d (defect 11): where the maximum is flat, λ is
+/// ill-conditioned, and the two orders differ by more than 1e-12 though each is within
+/// its documented bound (`lambda_bound`) of λ*: here an ellipse of aspect ratio ~1e5
+/// against a nearly circular one, `f″/f = −2e-8` at λ*, λ of the two orders 1.6e-8
+/// apart and 2.5e-8 from λ* = 0.69763680215345547 (`tools/contact_exact.py`), one ulp
+/// in the data moves λ* by up to 7.3e-8, and the bound is 5.3e-5.
+#[test]
+fn lambda_of_a_flat_maximum_is_within_its_documented_bound_in_both_orders() {
+    use grainpack::contact::lambda_bound;
+    let r = [-5.866585485739188e-21, 1.5036001245528784e-66, 0.0];
+    let q1 = [
+        7.477080275538721e20,
+        7.477080264543605e20,
+        0.0,
+        7.477080259389644e20,
+        0.0,
+        7.477080267464182e20,
+    ];
+    let q2 = [
+        156842363017.2755,
+        156842099844.51764,
+        0.0,
+        7.477080264543605e20,
+        0.0,
+        3.738540133056014e20,
+    ];
+    let exact = 0.6976368021534555;
+    let one = contact_function(&r, &q1, &q2).unwrap();
+    let minus_r = r.map(|x: f64| -x);
+    let other = contact_function(&minus_r, &q2, &q1).unwrap();
+    let bound_one = lambda_bound(&r, &q1, &q2, one.lambda).unwrap();
+    let bound_other = lambda_bound(&minus_r, &q2, &q1, other.lambda).unwrap();
+    assert!(
+        bound_one > 1e-6 && bound_other > 1e-6,
+        "{bound_one} {bound_other}"
+    );
+    assert!((one.lambda - exact).abs() <= bound_one, "{one:?}");
+    assert!(
+        (1.0 - other.lambda - exact).abs() <= bound_other,
+        "{other:?}"
+    );
+    assert_eq!(one.mu2, other.mu2);
+}
+
+/// fuzz target contact_bits_2d (open defect 5 of the third round, now defect 12): a
+/// nearly rank-1 form of size 7.5e20 against a segment of 1.9e-39 answered μ² =
+/// 7.477080264558488e20 in one order and 7.477080264524815e20 in the other (4.5e-12
+/// apart; `tools/contact_exact.py` gives the first, with λ* = 1 − 1.4e-30). `F` is flat
+/// to 4.5e-12 across the middle, so ψ(½), whose sign chose the half of [0, 1] to search,
+/// was rounding (−9.8e-18 against terms of order 1), and the swapped order searched the
+/// half without the maximum. An unresolved ψ(½) now has both halves searched. The
+/// second pair (forms of 1e-304 and 5e-322) was 1.9e-14 apart the same way.
+#[test]
+fn swapping_a_pair_whose_contact_function_is_flat_across_the_middle_keeps_mu2() {
+    let pairs = [
+        (
+            [7.477080264572239e20, 7.477080264534209e20, 0.0],
+            [
+                7.477080264586554e20,
+                7.477080264543599e20,
+                0.0,
+                7.477080264543605e20,
+                0.0,
+                7.47708026456508e20,
+            ],
+            [
+                1.878900217323738e-39,
+                2.787848324310933e-309,
+                0.0,
+                0.0,
+                0.0,
+                9.39450108661869e-40,
+            ],
+            7.477080264558488e20,
+        ),
+        (
+            [3.5310009961663e-310, -7.24536890462657e-171, 0.0],
+            [
+                4.450419332515262e-308,
+                1.35675105885e-312,
+                0.0,
+                6.664569048004567e-304,
+                0.0,
+                3.332507044968909e-304,
+            ],
+            [5.34e-322, 0.0, 0.0, 0.0, 0.0, 2.67e-322],
+            7.876783957973734e-38,
+        ),
+    ];
+    for (r, q1, q2, exact) in pairs {
+        let one = contact_function(&r, &q1, &q2).unwrap();
+        let other = contact_function(&r.map(|x: f64| -x), &q2, &q1).unwrap();
+        for c in [one, other] {
+            assert!((c.mu2 - exact).abs() <= 4.0 * f64::EPSILON * exact, "{c:?}");
+        }
+    }
+}
+
+/// A box of 1e100 given with 4 grains of 1e-100 validated, and every output said the
+/// grains filled 0 of it (1e-600 underflows; `packing_fraction = 0` in the summary).
+/// Such a fraction is meaningless in doubles: now refused naming `box.size` and its
+/// value, in 3D and 2D, with a count and with an exact measured table, wherever the
+/// fraction is below the normal doubles (grains of 1e-102 in a box of 20: 2.6e-310);
+/// grains that fill a normal double of the same box (1e-2 across: 2e-306) still
+/// validate.
+#[test]
+fn a_box_the_grains_fill_less_than_a_double_resolves_is_refused_naming_box_size() {
+    use grainpack::scene::Scene;
+    let dir = std::env::temp_dir().join(format!("grainpack-huge-box-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let name = dir.join("scene.toml").display().to_string();
+    let counted = |size: &str, d: &str| {
+        format!(
+            "grains = 4\n[box]\nsize = {size}\n[[phase]]\n\
+             [phase.size]\ndistribution = \"constant\"\nvalue = {d}\n"
+        )
+    };
+    std::fs::write(dir.join("grains.csv"), "d\n1e-100\n2e-100\n").unwrap();
+    let measured = "[box]\nsize = [1e100, 1e100, 1e100]\n[[phase]]\n\
+                    measured = { file = \"grains.csv\", mode = \"exact\" }\n";
+    for (scene, size) in [
+        (
+            counted("[1e100, 1e100, 1e100]", "1e-100"),
+            "[1e100, 1e100, 1e100]",
+        ),
+        (counted("[1e150, 1e150]", "1e-100"), "[1e150, 1e150]"),
+        (
+            counted("[20.0, 20.0, 20.0]", "1e-102"),
+            "[20.0, 20.0, 20.0]",
+        ),
+        (measured.to_string(), "[1e100, 1e100, 1e100]"),
+    ] {
+        let message = Scene::from_str(&scene, &name).unwrap_err().to_string();
+        assert!(
+            message.contains(&format!("box.size = {size}: ")),
+            "{message}"
+        );
+        assert!(message.contains("below the smallest fraction"), "{message}");
+    }
+    let s = Scene::from_str(&counted("[1e100, 1e100, 1e100]", "1e-2"), &name).unwrap();
+    assert!(s.domain.volume() > 0.0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// fuzz target contact_bits_2d (fifth round, defect 14): a needle of size 7.5e20 and
+/// aspect ratio ~1e6 (its thin pivot 3e-12 of its size, just above
+/// `MIN_RELATIVE_PIVOT`) against an ellipse of 0.03: both orders answered μ² =
+/// 1.30150050382064e31, `Converged`, 2.0e-5 below `tools/contact_exact.py`'s
+/// 1.3015266575024577e31, at λ = 1 − 4.1e-7 instead of 1 − 3.29e-6. The corrector took
+/// a curvature `g′ ≤ 0` (rounding, as `f` is concave) for convergence; it now closes
+/// its bracket on the sign of `g`. One ulp in the data moves μ² by 2.3e-4 here, so the
+/// answer (1.0e-12 and 4e-13 from the exact one) is held to 1e-11, not to ulps; the
+/// two orders still differ by 6.5e-13, beyond `IDENTITY_TOL` (open, `fuzz/open/`).
+#[test]
+fn a_curvature_lost_to_rounding_is_not_taken_for_convergence() {
+    let r = [7.477750072378836e20, 5.754711558261857e20, 0.0];
+    let q1 = [
+        7.477080264586548e20,
+        7.477080264543605e20,
+        0.0,
+        7.477080264523472e20,
+        0.0,
+        7.47708026455501e20,
+    ];
+    let q2 = [
+        0.025132242838541666,
+        0.00047679344813029615,
+        0.0,
+        0.000484719701714185,
+        0.0,
+        0.012808481270127925,
+    ];
+    let exact = 1.3015266575024577e31;
+    for c in [
+        contact_function(&r, &q1, &q2).unwrap(),
+        contact_function(&r.map(|x: f64| -x), &q2, &q1).unwrap(),
+    ] {
+        assert!((c.mu2 - exact).abs() <= 1e-11 * exact, "{c:?}");
+        assert_eq!(c.stop, Stop::Converged);
+    }
+}
+
+/// fuzz target contact_bits_2d (fifth round, a regression of defect 12's fix before it
+/// was committed): `F` flat to an ulp around λ = ½; with both halves searched, one order
+/// found the two maxima equal and answered λ = ½, the other found them an ulp apart and
+/// took the larger one's λ, 0.5000000020. Maxima within `F_TIE_TOL` are now a tie.
+#[test]
+fn lambda_mirrors_where_the_two_halves_maxima_are_an_ulp_apart() {
+    let r = [8.814422105064095e-280, 2.0602110840840086e24, 0.0];
+    let q1 = [
+        1.1931846177412974e23,
+        3.2111828443926037e-308,
+        0.0,
+        2.104900968400905e35,
+        0.0,
+        1.052450484201049e35,
+    ];
+    let q2 = [
+        1.920405099359672e23,
+        3.1985436717098735e-308,
+        0.0,
+        2.1049009684009023e35,
+        0.0,
+        1.0524504842014113e35,
+    ];
+    let one = contact_function(&r, &q1, &q2).unwrap();
+    let other = contact_function(&r.map(|x: f64| -x), &q2, &q1).unwrap();
+    assert_eq!(one.mu2, other.mu2);
+    assert!(
+        (one.lambda - (1.0 - other.lambda)).abs() <= 1e-12,
+        "{one:?} {other:?}"
+    );
 }

@@ -4,19 +4,22 @@
 
 use grainpack::contact::{
     contact_function, contact_function_2d, contact_function_fast, contact_function_fast_2d,
-    contact_functions_2d, contact_geometry, embed_pair, overlaps, overlaps_2d, Contact,
-    ContactError, Stop, Sym2, Sym3, Vec2, Vec3,
+    contact_functions_2d, contact_geometry, embed_pair, lambda_bound, overlaps, overlaps_2d,
+    Contact, ContactError, Stop, Sym2, Sym3, Vec2, Vec3,
 };
 
 /// Relative bound on identities exact in real arithmetic that the accurate method
 /// reproduces to a few ulps: 16 ε, as `IDENTITY_TOL` in `tests/contact_properties.rs`.
 pub const IDENTITY_TOL: f64 = 16.0 * f64::EPSILON;
 
-/// Bound on `|λ(1, 2) − (1 − λ(2, 1))|`, as in `tests/contact_properties.rs`
-/// (`swapping_the_ellipsoids_keeps_mu2_and_mirrors_lambda`). Checked where that test
-/// draws its pairs: inputs and μ² without subnormal numbers. λ has no documented bound
-/// elsewhere (the robust path: "λ off by half on a `huge_ratio` reference pair"), and
-/// subnormal inputs carry fewer than 53 bits.
+/// Bound on `|λ(1, 2) − (1 − λ(2, 1))|` beyond λ's own documented bound
+/// (`contact::lambda_bound`, for each order), as in `tests/contact_properties.rs`
+/// (`swapping_the_ellipsoids_keeps_mu2_and_mirrors_lambda`), where the typical pairs'
+/// `lambda_bound` is ~1e-8 but λ agrees to 1e-12. Checked where that test draws its
+/// pairs: inputs and μ² without subnormal numbers (subnormal inputs carry fewer than
+/// 53 bits). `lambda_bound` is added because a flat maximum leaves λ ill-conditioned:
+/// on the 21 inputs of defect 11 (`docs/reliability.md`) λ of the two orders differed
+/// by up to 1.6e-8, and one ulp in the data moved λ* by up to 7.3e-8.
 pub const LAMBDA_SWAP_TOL: f64 = 1e-12;
 
 /// Zero or a normal double (not subnormal, not NaN or infinite).
@@ -26,6 +29,14 @@ fn plain(x: f64) -> bool {
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol * a.abs().max(b.abs())
+}
+
+/// [`close`], with one ulp of the subnormal numbers more: a μ² below the normal
+/// doubles is rounded once more, to fewer than 53 bits, as it is scaled back (half that
+/// ulp in each order: `5.47472818784314e-310` and `5.4747281878431e-310` by order, fuzz
+/// target `contact_bits_2d`, `crash-d22b8c1e`).
+fn close_or_subnormal_ulp(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol * a.abs().max(b.abs()) + f64::from_bits(1)
 }
 
 /// An answer that may be compared: the accurate method met its stopping test (or
@@ -68,15 +79,19 @@ pub fn check_pair(r: &Vec3, q1: &Sym3, q2: &Sym3, k: i32) {
     let b = swapped.unwrap_or_else(|e| panic!("{input}: answered, but swapped: {e}"));
     if settled(&a) && settled(&b) {
         assert!(
-            close(a.mu2, b.mu2, IDENTITY_TOL),
+            close_or_subnormal_ulp(a.mu2, b.mu2, IDENTITY_TOL),
             "{input}: swapped {a:?} {b:?}"
         );
     }
     let plain_input = r.iter().chain(q1).chain(q2).all(|&x| plain(x));
     if settled(&a) && settled(&b) && plain_input && a.mu2.is_normal() {
+        let bound = |r: &Vec3, q1: &Sym3, q2: &Sym3, c: &Contact| {
+            lambda_bound(r, q1, q2, c.lambda).unwrap_or(0.0)
+        };
+        let allowed = LAMBDA_SWAP_TOL + bound(r, q1, q2, &a) + bound(&r.map(|x| -x), q2, q1, &b);
         assert!(
-            (a.lambda - (1.0 - b.lambda)).abs() <= LAMBDA_SWAP_TOL,
-            "{input}: swapped {a:?} {b:?}"
+            (a.lambda - (1.0 - b.lambda)).abs() <= allowed,
+            "{input}: swapped {a:?} {b:?}, allowed {allowed:e}"
         );
     }
     // Powers of two keep r exact: μ² scales by t² to its rounding, while μ² and t²μ²

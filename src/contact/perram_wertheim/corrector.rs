@@ -5,6 +5,7 @@
 use super::GAIN_TOL;
 use super::{refined_ldl, PencilParts, Rational, MAX_ITERATIONS};
 use super::{Contact, ContactError, Prepared, Refined, Refiner, Stop, Sym3, Vec3};
+use crate::contact::GAIN_ROUNDING_TOL;
 
 /// Newton on the refined residual from the predictor's λ, until the refined gain is
 /// below [`GAIN_TOL`]; the gain is then added. One step is the rule: it is taken here,
@@ -60,13 +61,54 @@ fn step_first(
 /// μ² and the polished λ (kept in `bracket`) if the Newton model at `t` has converged:
 /// its gain `g²/(2g′)` is at most [`GAIN_TOL`]` · f` and is added, and the next Taylor
 /// term it leaves out, `|g″| Δ³ / 6` with `Δ = g/g′`, is at most [`CUBIC_TERM_TOL`]` · f`.
+///
+/// λ is polished to second order, `t − Δ − g″Δ²/(2g′)` (the root of `g`'s Taylor
+/// quadratic, one Chebyshev step), at no further evaluation. The Newton step alone,
+/// `t − Δ`, leaves `g″Δ²/(2g′)` in λ, which the gain test does not bound: μ² is
+/// stationary in λ, so a step whose gain is below `GAIN_TOL` may still be 1e-6 long
+/// where the maximum is flat (`g′/f` small), and λ kept ~1e-12 of it (fuzz target
+/// `contact_bits_2d`, defect 11 of `docs/reliability.md`: λ of the swapped pair
+/// 1.1e-12 from `1 − λ`). μ² is unchanged: the gain is that of the Newton model.
 #[inline(always)]
 pub(super) fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64, f64)> {
     let step = v.g / v.gp;
     let gain = 0.5 * v.g * step;
     let cubic6 = v.gpp.abs() * (step * step * step).abs(); // 6 × the cubic term
+    let second = 0.5 * v.gpp * step * (step / v.gp);
     (v.gp > 0.0 && gain <= GAIN_TOL * v.f && cubic6 <= 6.0 * CUBIC_TERM_TOL * v.f)
-        .then(|| (v.f + gain, (t - step).clamp(bracket.0, bracket.1)))
+        .then(|| (v.f + gain, (t - step - second).clamp(bracket.0, bracket.1)))
+}
+
+/// How far λ of [`contact_function`](super::contact_function) may lie from λ* at a
+/// pair on its common path: `√(2 GAIN_ROUNDING_TOL · f / g′)` at `lambda`, with `f`
+/// and `g′ = −f″` of the refined evaluation; `None` where that evaluation fails or `f`
+/// is not curved there (forms that do not factor, λ at an end: the pairs of module
+/// `robust`, whose λ is held by `LOG_Y_STEP` instead).
+///
+/// μ² is stationary in λ, so the corrector needs `g = −f′` only to `δg` with
+/// `δg²/(2g′) ≤ GAIN_ROUNDING_TOL · f` for μ² to be right to `ε/8`
+/// ([`GAIN_ROUNDING_TOL`](crate::contact::GAIN_ROUNDING_TOL)); λ, the root of `g`,
+/// moves by `δg/g′`, up to this bound, which grows as the maximum flattens
+/// (`g′/f` small). It is also λ's conditioning: on 16 of the 21 pairs of defect 11
+/// (`docs/reliability.md`) a change of one ulp in the entries of `r12`, `q1`, `q2`
+/// moves λ* by more than 1e-12, up to 7.3e-8 (`tools/contact_exact.py`), so no method
+/// working in doubles holds λ there to the 1e-12 it keeps on typical pairs. Beyond
+/// the rounding, the truncation of the polished λ is third order in the last Newton
+/// step ([`finished`]).
+///
+/// ```
+/// use grainpack::contact::{contact_function, lambda_bound};
+/// let (r, q) = ([2.0, 0.0, 0.0], [1.0, 0.0, 0.0, 1.0, 0.0, 1.0]);
+/// let c = contact_function(&r, &q, &q).unwrap();
+/// // Two unit balls 2 apart: λ* = ½, f = 4λ(1−λ), g′/f = 8 there.
+/// let bound = lambda_bound(&r, &q, &q, c.lambda).unwrap();
+/// assert!((bound - (2.0 * grainpack::contact::GAIN_ROUNDING_TOL / 8.0).sqrt()).abs() < 1e-15);
+/// ```
+pub fn lambda_bound(r12: &Vec3, q1: &Sym3, q2: &Sym3, lambda: f64) -> Option<f64> {
+    let p = Prepared::new(r12, q1, q2).ok()?;
+    let v = refined_ldl(lambda, &p.r, &p.q1, &p.q2).ok()?;
+    let ratio = v.f / v.gp;
+    (v.gp > 0.0 && ratio.is_finite()).then(|| (2.0 * GAIN_ROUNDING_TOL * ratio).sqrt())
 }
 
 /// Largest relative size of the third-order Taylor term that the corrector's result may
@@ -74,6 +116,10 @@ pub(super) fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64,
 /// `GAIN_TOL^{3/2}` only where `f` is curved like its poles; when λ* is within ~1e-6 of
 /// 0 or 1 the poles nearly cancel and the term can be ~1e3 times that.
 pub const CUBIC_TERM_TOL: f64 = f64::EPSILON / 8.0;
+
+/// The corrector's bracket on λ* is closed when it is at most `BRACKET_CLOSED = 4ε`
+/// of its upper end wide: a few ulps of λ.
+const BRACKET_CLOSED: f64 = 4.0 * f64::EPSILON;
 
 /// The corrector's Newton iteration, bracketed afresh (the predictor's bracket rests on
 /// the rational form's rounding), with the LDLᵀ refinement wherever the adjugate start
@@ -105,18 +151,28 @@ pub(super) fn correct_further(
     for _ in 0..MAX_ITERATIONS {
         iterations += 1;
         let v = evaluate(lambda)?;
-        if !(v.gp > 0.0) {
-            return p.finish(v.f, lambda, Stop::Converged, iterations);
-        }
         if let Some((mu2, polished)) = finished(&v, lambda, (lo, hi)) {
             return p.finish(mu2, polished, Stop::Converged, iterations);
         }
         if v.g > 0.0 {
             hi = lambda;
-        } else {
+        } else if v.g < 0.0 {
             lo = lambda;
+        } else {
+            return p.finish(v.f, lambda, Stop::Converged, iterations);
         }
-        let next = lambda - v.g / v.gp;
+        // A curvature lost to rounding (g′ ≤ 0, where f is concave) is no sign of
+        // convergence: the bracket goes on closing on the sign of g, the refined part,
+        // until it is at rounding. (Taking it as converged answered μ² 2e-5 below the
+        // maximum, 3e-6 from it in λ: fuzz target `contact_bits_2d`, defect 14.)
+        if !(v.gp > 0.0) && hi - lo <= BRACKET_CLOSED * hi {
+            return p.finish(v.f, lambda, Stop::Converged, iterations);
+        }
+        let next = if v.gp > 0.0 {
+            lambda - v.g / v.gp
+        } else {
+            f64::NAN
+        };
         lambda = if next > lo && next < hi {
             next
         } else {
@@ -141,11 +197,13 @@ mod tests {
         }
     }
 
-    /// A small quadratic gain is accepted and added, and the step polishes λ...
+    /// A small quadratic gain is accepted and added, and the step polishes λ to second
+    /// order: `g + g′Δ + g″Δ²/2 = 0` with `g = 1e-6`, `g′ = g″ = 1` gives
+    /// `Δ = −1e-6 − 0.5e-12` (the Newton step alone, `−1e-6`, leaves `0.5e-12`)...
     #[test]
     fn corrector_adds_a_small_gain() {
         let (mu2, lambda) = finished(&refined(1e-6, 1.0), 0.5, (0.0, 1.0)).unwrap();
-        assert_eq!((mu2, lambda), (1.0 + 0.5e-12, 0.5 - 1e-6));
+        assert_eq!((mu2, lambda), (1.0 + 0.5e-12, 0.5 - 1e-6 - 0.5e-12));
     }
 
     /// ...unless the third-order term left out is above ε/8 (here 1e10 · 1e-18 / 6),

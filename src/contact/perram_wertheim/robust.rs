@@ -30,7 +30,8 @@
 //! =: ψ` and `d²φ/du² = Var_N − Var_C`: ratios of sums of non-negative terms, bounded
 //! and free of cancellation whatever the sizes (ψ is summed as one signed double sum).
 //! The root of ψ is taken in `y ≤ 1` (the pair mirrored if it lies above, so that `y`
-//! keeps its relative precision however close λ* is to an end) by Newton's method in
+//! keeps its relative precision however close λ* is to an end; in both halves, the
+//! larger `F` kept, where the sign of `ψ(½)` is rounding) by Newton's method in
 //! `u`, from the maximiser for two spheres, with a bisection of `u` whenever Newton
 //! leaves the bracket or fails to halve it. `F` is then a sum of positive terms in
 //! coefficients accurate to about `ε²` (module [`exact`](super::exact)), so μ² is
@@ -214,19 +215,85 @@ fn maximise(n: &[f64; 5], c: &[f64; 5], odds: f64) -> Result<Maximum, ContactErr
     }
     let (nr, cr) = (reversed(n), reversed(c));
     // The root lies above ½ if ψ(½) > 0: mirrored, it lies in (0, ½].
-    let mirrored = psi(n, c, 1.0).0 > 0.0;
-    let (n, c) = if mirrored { (&nr, &cr) } else { (n, c) };
-    let (value, y, stop, iterations) = root(n, c, if mirrored { 1.0 / odds } else { odds });
-    // λ̂ = y/(1+y) and 1 − λ̂ = 1/(1+y), each to its own relative precision.
-    let (x, rest) = (y / (1.0 + y), 1.0 / (1.0 + y));
-    let (s, t) = if mirrored { (x, rest) } else { (rest, x) };
+    let (slope, size) = psi_at_half(n, c);
+    let half = |mirrored: bool| {
+        let (n, c) = if mirrored { (&nr, &cr) } else { (n, c) };
+        let (value, y, stop, iterations) = root(n, c, if mirrored { 1.0 / odds } else { odds });
+        // λ̂ = y/(1+y) and 1 − λ̂ = 1/(1+y), each to its own relative precision.
+        let (x, rest) = (y / (1.0 + y), 1.0 / (1.0 + y));
+        let (s, t) = if mirrored { (x, rest) } else { (rest, x) };
+        Maximum {
+            value,
+            s,
+            t,
+            stop,
+            iterations,
+        }
+    };
+    if slope.abs() > SLOPE_TOL * size {
+        return Ok(half(slope > 0.0));
+    }
+    // ψ(½) is rounding: F is flat across the middle to an ulp, and its maximum may lie
+    // in either half (within 1e-30 of an end, a few ulps above the middle: fuzz target
+    // `contact_bits_2d`). Both are searched; the larger F is the maximum, and two within
+    // `F_TIE_TOL` of each other take λ̂ = ½ (between them, where quasi-concave F is at
+    // least as large), the same choice for the pair in either order.
+    let (below, above) = (half(false), half(true));
+    let iterations = below.iterations + above.iterations;
+    let stop = match (below.stop, above.stop) {
+        (Stop::Converged, Stop::Converged) => Stop::Converged,
+        _ => Stop::MaxIterations,
+    };
+    let larger = below.value.max(above.value);
+    let best = if (below.value - above.value).abs() <= F_TIE_TOL * larger {
+        Maximum {
+            value: larger,
+            s: 0.5,
+            t: 0.5,
+            ..below
+        }
+    } else if below.value > above.value {
+        below
+    } else {
+        above
+    };
     Ok(Maximum {
-        value,
-        s,
-        t,
         stop,
         iterations,
+        ..best
     })
+}
+
+/// `ψ(½)` (at `y = 1`) when its sign is at most `SLOPE_TOL` of the sum of its terms'
+/// magnitudes is rounding, and the half of `[0, 1]` that holds the maximum is not
+/// known: each coefficient is a double rounded once from double-double (`ε/2`), each
+/// product `N_i C_j` once more (`3ε/2` in all), and the sum of the 25 terms
+/// `(i − j) N_i C_j` adds at most `12ε` of their magnitudes. Taking the sign of a
+/// rounding-level `ψ(½)` made μ² depend on the order of the pair, by 4.5e-12 (the pair
+/// of defect 12 in `docs/reliability.md`).
+const SLOPE_TOL: f64 = 16.0 * f64::EPSILON;
+
+/// Two maxima of `F`, one from each half, within `F_TIE_TOL = 4ε` of each other are the
+/// same value to the rounding of `F` (a sum of positive terms: a few ulps), and their
+/// λ̂ is not resolved between them. Taking the larger one's λ̂ instead (exact equality
+/// as the tie) answered λ = ½ for a pair and 0.5000000020 for its swap, where `F`
+/// was flat to an ulp over 2e-9 and the search of the half without the root stopped
+/// short of ½ (fuzz target `contact_bits_2d`, `crash-b3b11fed`).
+const F_TIE_TOL: f64 = 4.0 * f64::EPSILON;
+
+/// `ψ(½)` and the sum of the magnitudes of its terms, both as in [`psi`] at `y = 1`.
+fn psi_at_half(n: &[f64; 5], c: &[f64; 5]) -> (f64, f64) {
+    let (wn, sn, _) = moments(n, 1.0);
+    let (wc, sc, _) = moments(c, 1.0);
+    let (mut cross, mut size) = (0.0, 0.0);
+    for (i, a) in wn.iter().enumerate() {
+        for (j, b) in wc.iter().enumerate() {
+            let d = i as f64 - j as f64;
+            cross += d * (a * b);
+            size += d.abs() * (a * b);
+        }
+    }
+    (cross / sn / sc, size / sn / sc)
 }
 
 /// The terms `p_k y^{k−l}` (`l` the first index with `p_l > 0`) at `y = x/(1−x)`,

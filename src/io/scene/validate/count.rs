@@ -29,6 +29,7 @@ pub(super) fn count(
             if count == 0 || count > MAX_GRAINS as u64 {
                 return Err(src.invalid_at("grains", n, format!("must lie in [1, {MAX_GRAINS}]")));
             }
+            fraction_resolved(src, raw, count as f64 * v_grain, v_box, "the grains fill")?;
             let fraction = count as f64 * v_grain / v_box;
             if fraction > densest {
                 return Err(src.invalid_at(
@@ -65,4 +66,37 @@ pub(super) fn count(
             Ok(GrainCount::Fraction(fraction))
         }
     }
+}
+
+/// Refuses a box given with the grains' count (or their exact tables) that they fill a
+/// fraction of below the normal doubles: the scene's fraction is then 0 in every
+/// output (`box.size = [1e100, 1e100, 1e100]` with 4 grains of 1e-100: 1e-600, written
+/// as `packing_fraction = 0`), and one grain against the box is finer than the packing
+/// resolves (centres are rounded to the box's ulp, 1e84 there). Names `box.size`, with
+/// the grains' total volume (`volume`; an area in 2D) and what they fill (`filled`: how
+/// they came to).
+pub(super) fn fraction_resolved(
+    src: &Source,
+    raw: &RawScene,
+    volume: f64,
+    v_box: f64,
+    filled: &str,
+) -> Result<(), SceneError> {
+    if volume / v_box >= f64::MIN_POSITIVE {
+        return Ok(());
+    }
+    let fraction = match v_box.is_finite() {
+        true => format!("about 1e{:.0}", volume.log10() - v_box.log10()),
+        false => "0 (the box's volume is beyond the double range)".to_string(),
+    };
+    Err(src.invalid(
+        "box.size",
+        raw.domain.get_ref().size.span(),
+        format!(
+            "{filled} {fraction} of this box, below the smallest fraction a double \
+             resolves ({:.1e}): the box is too large for these grains; give a box closer \
+             to their size, or target_fraction",
+            f64::MIN_POSITIVE
+        ),
+    ))
 }

@@ -148,6 +148,8 @@ pub(super) fn sized_box(
         None => {
             let at = raw.domain.get_ref().size.span();
             fits(&domain, at.clone(), "box.size")?;
+            let filled = "the measured grains fill";
+            super::count::fraction_resolved(src, raw, volume, domain.volume(), filled)?;
             let phi = volume / domain.volume();
             if phi > limit {
                 return Err(src.invalid(
