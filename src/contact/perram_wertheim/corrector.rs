@@ -94,7 +94,7 @@ pub(super) fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64,
 /// moves λ* by more than 1e-12, up to 7.3e-8 (`tools/contact_exact.py`), so no method
 /// working in doubles holds λ there to the 1e-12 it keeps on typical pairs. Beyond
 /// the rounding, the truncation of the polished λ is third order in the last Newton
-/// step ([`finished`]).
+/// step (`finished`, below).
 ///
 /// ```
 /// use grainpack::contact::{contact_function, lambda_bound};
