@@ -9,7 +9,7 @@ use super::grains::rotate_by;
 use super::jamming::{JamTest, Patience, Verdict};
 use super::neighbours::Neighbours;
 use super::state::State;
-use super::{Counters, FireParams, Outcome, PackError, Progress, Trial};
+use super::{Counters, FireParams, Outcome, PackError, Progress};
 use crate::contact::dot;
 use crate::scene::{Boundary, Rotation};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -33,8 +33,6 @@ pub(crate) struct Context<'a> {
     /// When `packing.time_limit` runs out: a relaxation then stops as at `stop`.
     pub deadline: Option<Instant>,
     pub progress: &'a mut dyn FnMut(&Progress),
-    /// The loop's relaxations so far, one per trial scale.
-    pub trials: Vec<Trial>,
 }
 
 /// The integrator's state: velocities (angular ones in length units, `ω × L`) and the

@@ -138,8 +138,9 @@ pub fn pack(
         stop,
         deadline: (params.time_limit).map(|t| Instant::now() + Duration::from_secs_f64(t)),
         progress,
-        trials: Vec::new(),
     };
+    // The loop's relaxations, one per trial scale (`Packing::trials`).
+    let mut trials = Vec::new();
     let mut fire = Fire::new(tuning.fire);
     // The best clean state (scale, centres, orientations) and the smallest stuck scale.
     let mut best: Option<Snapshot> = None;
@@ -189,7 +190,7 @@ pub fn pack(
             s * (1.0 + protocol.margin),
             left.min(budget),
         )?;
-        run.trials.push(Trial {
+        trials.push(Trial {
             scale: s,
             fraction: state.fraction(s),
             outcome,
@@ -279,7 +280,7 @@ pub fn pack(
         }
     }
     // The loop's buffers go before the check builds its own.
-    let (counters, trials) = (run.counters, std::mem::take(&mut run.trials));
+    let counters = run.counters;
     drop((run, fire));
     let mut packing = finish(
         specs, &order, &mut state, snapshot, reason, counters, params.gap,
