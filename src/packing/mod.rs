@@ -20,7 +20,8 @@
 //!    [`stage_steps`](ProtocolParams::stage_steps)); after a stuck relaxation the state
 //!    shrunk by its smallest μ is a clean state at once, and the scale is bisected
 //!    between the best clean scale and the smallest stuck one until they are within
-//!    `jam_resolution` (relative; a scene parameter). Near the jamming point
+//!    `jam_resolution` (relative; a scene parameter), the target itself tried once as
+//!    soon as it lies between the clean end and the midpoint (`tries_target`). Near the jamming point
 //!    relaxations slow down without end (critical slowing down), so each trial below
 //!    the target has a budget of [`trial_steps`](ProtocolParams::trial_steps) steps
 //!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
@@ -156,6 +157,9 @@ pub fn pack(
         unjam::Unjammer::new(params.unjam, recompression_cycles(params.effort), seed);
     // Until the first jam deep enough to search from (`effort::QUENCH_STEP`).
     let mut quenching = true;
+    // The target is tried once out of turn (`tries_target`): a guess, which bounds the
+    // search only if it jams on a plateau.
+    let (mut target_tried, mut guess) = (false, false);
     let reason = loop {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if left == 0 {
@@ -197,6 +201,7 @@ pub fn pack(
             fire_steps: run.counters.fire_steps - before,
             energy_per_grain: run.forces.energy / state.len() as f64,
         });
+        let guessed = std::mem::take(&mut guess);
         match outcome {
             Outcome::Interrupted => break interrupted(&run),
             Outcome::Clean => best = Some(Snapshot::of(&state, s.min(1.0))),
@@ -211,7 +216,9 @@ pub fn pack(
                     s *= 1.0 + QUENCH_STEP;
                     continue;
                 }
-                stuck = stuck.min(s);
+                if !(guessed && outcome == Outcome::Budget) {
+                    stuck = stuck.min(s);
+                }
             }
         }
         quenching = false;
@@ -257,7 +264,9 @@ pub fn pack(
             fire.set_window(half_window);
             continue;
         }
-        s = 0.5 * (low + stuck);
+        guess = !target_tried && tries_target(low, stuck);
+        target_tried |= guess;
+        s = if guess { 1.0 } else { 0.5 * (low + stuck) };
     };
     let mut snapshot = match best {
         Some(b) => b,
@@ -353,6 +362,19 @@ fn turn_back(
     let left = (budget - steps).min(protocol.stage_steps);
     let settled = fire.relax(state, run, s, big_s, left)?;
     Ok((settled == Outcome::Clean).then(|| Snapshot::of(state, s)))
+}
+
+/// Whether the bisection between the densest clean scale `low` and the smallest stuck
+/// one `stuck` should try the target (scale 1) instead of their midpoint: where it lies
+/// between `low` and the midpoint. The loop does so once: a clean relaxation there
+/// ends the run (a target just below the jamming point is then reached without the
+/// bisection narrowing down to it); one jammed on a plateau bounds the search as any
+/// trial; one that runs out of steps bounds nothing: from a state jammed far above the
+/// target, one trial there may run out of steps where the bisection's smaller steps
+/// reach it (lognormal spheres at full size 0.659, seed 2: BENCHMARKS.md, "Issue 27,
+/// fifth round"), and the bisection goes on from its midpoint.
+fn tries_target(low: f64, stuck: f64) -> bool {
+    low < 1.0 && 1.0 < 0.5 * (low + stuck)
 }
 
 /// Why a relaxation stopped early: the time limit if it has run out, else the caller.

@@ -70,7 +70,8 @@ fn fixed_orientations_stay_as_drawn_and_the_jammed_state_is_clean() {
 }
 
 /// The trials account for every relaxation and FIRE step of a run without unjamming
-/// moves, and bracket the state kept: no clean trial beyond it, no stuck one below.
+/// moves, and bracket the state kept: no clean trial beyond it, no stuck one below
+/// (but for a guess at the target that ran out of steps).
 #[test]
 fn the_trials_say_where_every_fire_step_went() {
     let (p, _) = pack_scene(DENSE_SPHEROIDS, Rotation::None);
@@ -81,6 +82,8 @@ fn the_trials_say_where_every_fire_step_went() {
     for t in &p.trials {
         match t.outcome {
             Outcome::Clean => assert!(t.scale <= p.scale, "{t:?} beyond {}", p.scale),
+            // A guess at the target that ran out of steps bounds nothing (`tries_target`).
+            Outcome::Budget if t.scale == 1.0 => {}
             Outcome::Stuck | Outcome::Budget => assert!(t.scale > p.scale, "{t:?}"),
             Outcome::Interrupted => panic!("{t:?}"),
         }
@@ -88,6 +91,18 @@ fn the_trials_say_where_every_fire_step_went() {
     }
     let stuck = p.trials.iter().filter(|t| t.outcome != Outcome::Clean);
     assert!(stuck.count() >= 1);
+}
+
+/// Between a clean and a stuck scale, the bisection tries the target itself where the
+/// bracket holds it below its midpoint, and the midpoint otherwise.
+#[test]
+fn the_bisection_tries_the_target_where_its_bracket_holds_it_below_the_midpoint() {
+    assert!(tries_target(0.98, 1.04));
+    assert!(tries_target(0.99, 1.0404));
+    assert!(tries_target(0.98, f64::INFINITY));
+    assert!(!tries_target(0.98, 1.01));
+    assert!(!tries_target(0.9, 0.95));
+    assert!(!tries_target(1.0, 1.02));
 }
 
 #[track_caller]
