@@ -3,7 +3,7 @@
 //! (`summary.json`), with the statistics of the packed grains against the scene's laws.
 //!
 //! Each file is written to a temporary name beside it and renamed when complete
-//! ([`write_atomically`]), so a reader never sees a partial file; `summary.json` is
+//! ([`write_atomically`](crate::io::atomic::write_atomically)), so a reader never sees a partial file; `summary.json` is
 //! written last.
 //!
 //! ```no_run
@@ -19,6 +19,7 @@
 //! ```
 
 mod derived;
+mod files;
 mod summary;
 mod texture;
 
@@ -28,11 +29,11 @@ pub use derived::{
 };
 
 pub use crate::io::texture::crystal_orientations;
+pub use files::{create_dir, OutputFiles};
 pub use summary::{CounterSummary, Summary, TimingSummary, UnitsSummary};
 pub use texture::{texture_summaries, TextureSummary};
 
 use crate::contact::{ellipse_angle, Dimension};
-use crate::io::atomic::write_atomically;
 use crate::io::cases::format_17;
 use crate::io::decks::{
     write_abaqus_deck, write_load_yaml, write_material_yaml, write_umat_sections, LOAD_YAML,
@@ -46,7 +47,7 @@ use crate::packing::PackedGrain;
 use crate::run::RunResult;
 use crate::scene::{quaternion_to_euler, PhaseTexture, Scene};
 use std::io::{self, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// File name of the grain table.
 pub const GRAINS_CSV: &str = "grains.csv";
@@ -274,7 +275,7 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         Some(_) => {
             let stats = write_mesh(scene, grains, &output.dir, result.threads, &python())?;
             for name in [MESH_MSH, MESH_INP, MESH_VTU] {
-                files.written.push(output.dir.join(name));
+                files.record(output.dir.join(name));
             }
             Some(stats)
         }
@@ -293,76 +294,6 @@ pub fn write_outputs(scene: &Scene, result: &RunResult) -> Result<Written, Repor
         mesh,
         textures,
         seconds,
-    })
-}
-
-/// The files written into one output directory, each atomically
-/// ([`write_atomically`]), in the order written.
-#[derive(Debug)]
-pub struct OutputFiles<'a> {
-    dir: &'a Path,
-    written: Vec<PathBuf>,
-}
-
-impl<'a> OutputFiles<'a> {
-    /// Nothing written yet into `dir` (which must exist).
-    pub fn new(dir: &'a Path) -> Self {
-        Self {
-            dir,
-            written: Vec::new(),
-        }
-    }
-
-    /// Writes `dir/name` through `write`, to a temporary name renamed when complete;
-    /// on error nothing is left under either name.
-    pub fn write(
-        &mut self,
-        name: &str,
-        write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
-    ) -> Result<(), ReportError> {
-        let path = self.dir.join(name);
-        write_atomically(&path, |w| write(w)).map_err(|source| ReportError::Write {
-            path: path.clone(),
-            source,
-        })?;
-        self.written.push(path);
-        Ok(())
-    }
-
-    /// `dir/name`.
-    pub fn path(&self, name: &str) -> PathBuf {
-        self.dir.join(name)
-    }
-
-    /// Records a file written (atomically) by someone else.
-    pub fn record(&mut self, path: PathBuf) {
-        self.written.push(path);
-    }
-
-    /// The error of failing to write `dir/name`.
-    pub fn error(&self, name: &str, source: io::Error) -> ReportError {
-        ReportError::Write {
-            path: self.dir.join(name),
-            source,
-        }
-    }
-
-    /// The paths written so far, in order.
-    pub fn written(&self) -> &[PathBuf] {
-        &self.written
-    }
-
-    /// The paths written, in order.
-    pub fn into_written(self) -> Vec<PathBuf> {
-        self.written
-    }
-}
-
-/// Creates `dir` and its parents if missing.
-pub fn create_dir(dir: &Path) -> Result<(), ReportError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::CreateDir {
-        path: dir.to_owned(),
-        source,
     })
 }
 
