@@ -1,7 +1,7 @@
 //! Defects the fuzz targets found (`fuzz/README.md`), each a test named after what
 //! broke, with the input that showed it.
 
-use grainpack::contact::{contact_function, contact_function_fast, Stop};
+use grainpack::contact::{contact_function, contact_function_2d, contact_function_fast, Stop};
 
 /// fuzz target contact_bits: a form 2^1800 times the size of the other (beyond the
 /// double range apart) put λ at ½ with `Stop::Exact`, while the swapped pair answered
@@ -516,8 +516,11 @@ fn a_box_the_grains_fill_less_than_a_double_resolves_is_refused_naming_box_size(
 /// 1.3015266575024577e31, at λ = 1 − 4.1e-7 instead of 1 − 3.29e-6. The corrector took
 /// a curvature `g′ ≤ 0` (rounding, as `f` is concave) for convergence; it now closes
 /// its bracket on the sign of `g`. One ulp in the data moves μ² by 2.3e-4 here, so the
-/// answer (1.0e-12 and 4e-13 from the exact one) is held to 1e-11, not to ulps; the
-/// two orders still differ by 6.5e-13, beyond `IDENTITY_TOL` (open, `fuzz/open/`).
+/// answer (1.0e-12 and 4e-13 from the exact one) was held to 1e-11, not to ulps; the
+/// two orders still differed by 6.5e-13 (defect 16: the needle's `κ(Q)` is above
+/// `FORM_MAX_CONDITION`, and the robust path now answers it to an ulp in both orders;
+/// the corrector's fix keeps its unit test,
+/// `correct_further_closes_its_bracket_where_the_curvature_is_lost_to_rounding`).
 #[test]
 fn a_curvature_lost_to_rounding_is_not_taken_for_convergence() {
     let r = [7.477750072378836e20, 5.754711558261857e20, 0.0];
@@ -577,4 +580,167 @@ fn lambda_mirrors_where_the_two_halves_maxima_are_an_ulp_apart() {
         (one.lambda - (1.0 - other.lambda)).abs() <= 1e-12,
         "{one:?} {other:?}"
     );
+}
+
+/// Relative error allowed against `tools/contact_exact.py` on the pairs of defect 16:
+/// `4 ε`, the accurate method's "a few ulps" (`tests/contact_reference.rs` holds every
+/// reference row to 1e-15).
+const FEW_ULPS: f64 = 4.0 * f64::EPSILON;
+
+/// fuzz target contact_bits_2d (fifth round, defect 16): needles whose thin pivot is
+/// 1e-12 to 1e-11 of their size (`[a, a(1 − δ), a]`, `κ(Q)` 1e10 to 1e12), against a
+/// small ellipse or a ball, answered μ² of the pair and of its swap 6.5e-13 and 2.9e-12
+/// apart, 5.7e-12 from `tools/contact_exact.py`, `Converged`: the common path's
+/// corrector starts from pivots that carry `ε κ(Q)` of relative rounding. A form beyond
+/// `FORM_MAX_CONDITION` now goes to the robust path (double-double coefficients).
+#[test]
+fn swapping_a_needle_at_the_pivot_threshold_keeps_mu2() {
+    let pairs = [
+        (
+            [7.477750072378836e20, 5.754711558261857e20],
+            [
+                7.477080264586548e20,
+                7.477080264543605e20,
+                7.477080264523472e20,
+            ],
+            [
+                0.025132242838541666,
+                0.00047679344813029615,
+                0.000484719701714185,
+            ],
+            1.3015266575024577e31,
+        ),
+        (
+            [4.961435292702622e-63, 3.2096635550264006e-5],
+            [
+                0.00035472212766762823,
+                3.056412234025843e-5,
+                0.00048421352334758813,
+            ],
+            [
+                7.477080264567086e20,
+                7.477080264543605e20,
+                7.477080264543605e20,
+            ],
+            4.387243944585004e-19,
+        ),
+    ];
+    for (r, q1, q2, exact) in pairs {
+        let one = contact_function_2d(&r, &q1, &q2).unwrap();
+        let other = contact_function_2d(&r.map(|x: f64| -x), &q2, &q1).unwrap();
+        for c in [one, other] {
+            assert!((c.mu2 - exact).abs() <= FEW_ULPS * exact, "{c:?}");
+        }
+    }
+}
+
+/// fuzz target contact_bits_2d (fifth round, defect 16): needles at the pivot threshold
+/// with `r12` of 1e49 to 1e58; `r12 × 2^7` scaled μ² by `4^7` only to 4.3e-15 to
+/// 2.7e-14 (beyond `IDENTITY_TOL`), the two answers taking different corrector paths,
+/// one of them 2.7e-14 from `tools/contact_exact.py`. Both now come from the robust
+/// path, each within a few ulps of the exact μ².
+#[test]
+fn scaling_r12_by_a_power_of_two_scales_mu2_of_a_needle_at_the_pivot_threshold() {
+    let pairs = [
+        (
+            [1.2554203472064354e58, 1.8464022333710866e-124],
+            [
+                0.0004767922794117647,
+                0.00047679227939755384,
+                0.0004767922794117647,
+            ],
+            [
+                0.00047677763086534505,
+                0.0004767922794117647,
+                0.00047680718057295854,
+            ],
+            6.108903007667663e125,
+        ),
+        (
+            [1.2554207821493227e58, -1.0632707623801621e40],
+            [
+                0.0004767922794136734,
+                0.0004767922794118063,
+                0.0004767922794117092,
+            ],
+            [
+                0.0004767922794117647,
+                0.0004767775538292405,
+                0.00048060325138709123,
+            ],
+            4.1037507745919374e121,
+        ),
+        (
+            [4.567047661815281e49, 0.00047679227941165367],
+            [
+                0.00047697109334609086,
+                0.0004767922794117647,
+                0.0004767922794117647,
+            ],
+            [
+                0.0004767922794117647,
+                0.00047679227940798993,
+                0.0004767922794118202,
+            ],
+            1.1659787066900333e106,
+        ),
+        (
+            [1.9154433580193413e53, 0.0],
+            [
+                0.0005263384487026447,
+                2.500039360005282e-23,
+                8.392333990034363e-5,
+            ],
+            [
+                0.00047679227941184796,
+                0.0004767922794117647,
+                0.00047679227941341615,
+            ],
+            6.012028125288351e109,
+        ),
+    ];
+    let t = 128.0;
+    for (r, q1, q2, exact) in pairs {
+        let plain = contact_function_2d(&r, &q1, &q2).unwrap();
+        let scaled = contact_function_2d(&r.map(|x| x * t), &q1, &q2).unwrap();
+        for mu2 in [plain.mu2, scaled.mu2 / (t * t)] {
+            assert!(
+                (mu2 - exact).abs() <= FEW_ULPS * exact,
+                "{plain:?} {scaled:?}"
+            );
+        }
+    }
+}
+
+/// The 3D form of defect 16 (not a fuzz input: the worst of 400 000 random pairs of a
+/// needle of aspect ratio 1e4 to 1.6e6 and an ellipsoid 1e4 to 1e8 smaller, measured
+/// while fixing it): μ² 5.1e-14 (228 ε) below `tools/contact_exact.py`'s
+/// 661584432268.35374, λ 1.6e-9 off, the swapped pair 3e-16 from it.
+#[test]
+fn mu2_of_a_3d_needle_beyond_the_form_condition_limit_is_within_a_few_ulps() {
+    let r = [-0.5487548856280867, 0.8951787033586457, 1.7701418865578311];
+    let q1 = [
+        0.367670581166053,
+        -0.35673086351350003,
+        0.3243948457165059,
+        0.798749029868393,
+        0.18300849206917383,
+        0.8335803889664193,
+    ];
+    let q2 = [
+        7.635445341336251e-18,
+        9.762442161939643e-18,
+        2.5033526267041417e-17,
+        2.5413241312697945e-17,
+        4.375666748173379e-17,
+        9.424045644359959e-17,
+    ];
+    let exact = 661_584_432_268.353_8;
+    for c in [
+        contact_function(&r, &q1, &q2).unwrap(),
+        contact_function(&r.map(|x: f64| -x), &q2, &q1).unwrap(),
+        contact_function_fast(&r, &q1, &q2).unwrap(),
+    ] {
+        assert!((c.mu2 - exact).abs() <= FEW_ULPS * exact, "{c:?}");
+    }
 }
