@@ -62,15 +62,15 @@ pub const FAST_MAX_CONDITION: f64 = FAST_TOL / (2.0 * FAST_ROUNDING * f64::EPSIL
 /// ratio of about 1.6e4 (`κ ≈ α²/2` at 45°). A form beyond it, whose pivots carry a
 /// relative rounding of `ε κ(Q)` above `2^-25` that the corrector's refined `f` and
 /// `g` start from, goes to the path of module `robust`, which forms the coefficients of
-/// `f` in double-double. Measured on 4 million random pairs (needles and discs of
-/// aspect ratios 10 to 1.6e6 against ellipses and ellipsoids up to 1e15 smaller, and
-/// nearly identical needles; 2D and 3D), the common path's μ² against the robust one's
-/// (itself within 1.6 ε of `tools/contact_exact.py`): at most 3.9 ε below `κ = 1e9`,
-/// 14 ε below 1e10, 228 ε (λ 2e-9 off) near `1/MIN_RELATIVE_PIVOT`, where the fuzz
-/// target `contact_bits_2d` found μ² of a pair and of its swap 2.9e-12 apart (defect 16
-/// of `docs/reliability.md`). `κ` of the reference sets' forms is at most 6.3e7
-/// (aspect ratios to 1e4), so none of them changes path; the robust path takes about
-/// 1.6 µs per pair against the common path's 0.6 µs on such forms.
+/// `f` in double-double. Measured on 3.2 million random pairs (needles and discs of
+/// aspect ratios 10 to 1.6e6 against ellipses and ellipsoids of semi-axes up to 1e8
+/// smaller, and nearly identical needles; 2D and 3D), the common path's μ² against the
+/// robust one's (itself within 1.6 ε of `tools/contact_exact.py`): at most 3.9 ε below
+/// `κ = 1e9`, 14 ε below 1e10, 228 ε (λ 2e-9 off) near `1/MIN_RELATIVE_PIVOT`, where
+/// the fuzz target `contact_bits_2d` found μ² of a pair and of its swap 2.9e-12 apart
+/// (defect 16 of `docs/reliability.md`). `κ` of the reference sets' forms is at most
+/// 6.3e7 (aspect ratios to 1e4), so none of them changes path; the robust path takes
+/// about 1.6 µs per pair against the common path's 0.6 µs on such forms.
 pub const FORM_MAX_CONDITION: f64 = (1u64 << 27) as f64;
 
 use crate::contact::scale::Prepared;
