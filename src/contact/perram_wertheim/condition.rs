@@ -69,8 +69,8 @@ pub const FAST_MAX_CONDITION: f64 = FAST_TOL / (2.0 * FAST_ROUNDING * f64::EPSIL
 /// `κ = 1e9`, 14 ε below 1e10, 228 ε (λ 2e-9 off) near `1/MIN_RELATIVE_PIVOT`, where
 /// the fuzz target `contact_bits_2d` found μ² of a pair and of its swap 2.9e-12 apart
 /// (defect 16 of `docs/reliability.md`). Below the limit that measurement is not a
-/// bound: the fuzz target has since found forms of `κ(Q)` 1e6 to 1.2e8 whose λ* lies
-/// within 3e-5 of an end, or whose `r12` is 1e61, answered up to 1.7e-13 off (open
+/// bound: the fuzz targets have since found forms of `κ(Q)` 1e6 to 1.2e8 whose λ* lies
+/// within 3e-5 of an end, or with `r12` of 1e61, answered up to 1.7e-13 off (open
 /// defect 18 there). `κ` of the reference sets' forms is at most 6.3e7 (aspect ratios
 /// to 1e4), so none of them changes path; the robust path takes about 1.6 µs per pair
 /// against the common path's 0.6 µs on such forms.
