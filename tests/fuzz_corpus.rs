@@ -87,50 +87,72 @@ fn generated_scenes_include_valid_and_refused_2d_ones() {
     );
 }
 
+/// The generator's 2D edit reaches a size table by area (edit 8, its first box, phase 0,
+/// the last set of 2D keys: `by = "area"`, which only a 2D scene takes): a valid 2D
+/// scene, packed by `check_scene`.
+#[test]
+fn generated_2d_scenes_include_a_size_table_by_area() {
+    use grainpack::contact::Dimension;
+    let text = checks::scene_from_choices(&mut checks::Choices::new(&[8, 0, 0, 10]));
+    assert!(text.contains("by = \"area\""), "{text}");
+    let scene = checks::check_scene(&text, checks::SCENE_NAME).expect("a valid scene");
+    assert_eq!(scene.domain.dimension, Dimension::Two, "{text}");
+}
+
 /// Every mesh edit of the generator (`fuzz/src/checks/mesh.rs`: a meshable scene, then
 /// one of `mesh`, `mesh_size`, `mesh_order`, `packing.gap` or the materials set to each
 /// of its limit values or removed) through `check_scene`, which holds a valid scene's
 /// mesh to its documented limits and a refusal to the line of the key it names (the
 /// mesh is never made: gmsh is not run). Each key's values give valid scenes and
-/// refusals naming that key.
+/// refusals naming that key, in 3D and in 2D (the same edits after edit 8's box of two
+/// lengths: a 2D scene is meshed as triangles).
 #[test]
 fn every_mesh_edit_validates_within_the_limits_or_is_refused_naming_its_key() {
     let mut outcomes = std::collections::BTreeMap::new();
-    for (i, &(table, key, values)) in checks::MESH_EDITS.iter().enumerate() {
-        for (j, value) in values.iter().enumerate() {
-            // Edit 9 (the mesh edit), then which key, which value, phase 0.
-            let bytes = [9, i as u8, j as u8, 0];
-            let text = checks::scene_from_choices(&mut checks::Choices::new(&bytes));
-            assert!(text.contains("mesh = true") || key == "mesh", "{text}");
-            let path = match table {
-                "phase.elastic" => format!("phase[0].elastic.{key}"),
-                t => format!("{t}.{key}"),
-            };
-            let named = match checks::check_scene(&text, checks::SCENE_NAME) {
-                Some(scene) => scene.output.mesh.is_some(),
-                None => {
-                    let e = grainpack::scene::Scene::from_str(&text, checks::SCENE_NAME);
-                    let message = e.expect_err("refused above").to_string();
-                    // Without a mesh (`mesh = false`), `[matrix]` is what is refused.
-                    let matrix = *value == "false" && message.contains(": matrix = ");
-                    assert!(
-                        value.is_empty() || matrix || message.contains(&format!(": {path}")),
-                        "{key} = {value}: {message}"
-                    );
-                    false
-                }
-            };
-            let (valid, refused) = outcomes.entry(path).or_insert((0, 0));
-            *if named { valid } else { refused } += 1;
+    // Edit 8 with its first box, phase 0 and its first (empty) set of 2D keys.
+    let flat = [8, 0, 0, 0];
+    for (dimension, prefix) in [("3D", &[][..]), ("2D", &flat[..])] {
+        for (i, &(table, key, values)) in checks::MESH_EDITS.iter().enumerate() {
+            for (j, value) in values.iter().enumerate() {
+                // Edit 9 (the mesh edit), then which key, which value, phase 0.
+                let bytes = [prefix, &[9, i as u8, j as u8, 0]].concat();
+                let text = checks::scene_from_choices(&mut checks::Choices::new(&bytes));
+                assert!(text.contains("mesh = true") || key == "mesh", "{text}");
+                assert_eq!(
+                    text.contains("size = [20.0, 20.0]\n"),
+                    dimension == "2D",
+                    "{text}"
+                );
+                let path = match table {
+                    "phase.elastic" => format!("phase[0].elastic.{key}"),
+                    t => format!("{t}.{key}"),
+                };
+                let named = match checks::check_scene(&text, checks::SCENE_NAME) {
+                    Some(scene) => scene.output.mesh.is_some(),
+                    None => {
+                        let e = grainpack::scene::Scene::from_str(&text, checks::SCENE_NAME);
+                        let message = e.expect_err("refused above").to_string();
+                        // Without a mesh (`mesh = false`), `[matrix]` is what is refused.
+                        let matrix = *value == "false" && message.contains(": matrix = ");
+                        assert!(
+                            value.is_empty() || matrix || message.contains(&format!(": {path}")),
+                            "{key} = {value}: {message}"
+                        );
+                        false
+                    }
+                };
+                let (valid, refused) = outcomes.entry((dimension, path)).or_insert((0, 0));
+                *if named { valid } else { refused } += 1;
+            }
         }
     }
     for (path, (valid, refused)) in &outcomes {
         assert!(
             *valid > 0 && *refused > 0,
-            "{path}: {valid} valid, {refused} refused"
+            "{path:?}: {valid} valid, {refused} refused"
         );
     }
-    assert_eq!(outcomes.len(), checks::MESH_EDITS.len(), "{outcomes:?}");
+    assert_eq!(outcomes.len(), 2 * checks::MESH_EDITS.len(), "{outcomes:?}");
 }
 
 #[test]

@@ -15,7 +15,9 @@ use super::Sym3;
 /// Beyond that, `Q` is numerically singular for this purpose: rounding of order
 /// `ε · cond` would swamp μ² (and the refined evaluation would not converge), so such
 /// a matrix is rejected as not positive definite. `2^-40` is far above the rounding of
-/// the pivots themselves (a few `ε · max Q_ii`).
+/// the pivots themselves (a few `ε · max Q_ii`). Definite forms within reach of it
+/// (condition above [`FORM_MAX_CONDITION`](super::FORM_MAX_CONDITION)) are factored,
+/// but the contact functions answer them by their robust path, as those below it.
 pub const MIN_RELATIVE_PIVOT: f64 = 1.0 / (1u64 << 40) as f64;
 
 /// The factors of `Q = L D Lᵀ`, with the reciprocals of the pivots.

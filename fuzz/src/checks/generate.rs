@@ -147,9 +147,10 @@ const PASSED: [(&str, &[&str]); 4] = [
 const FLAT: [&str; 3] = ["[20.0, 20.0]", "[24.0, 14.0]", "[9.0, 30.0]"];
 
 /// What a 2D edit sets beside the box (table, key, value): the 2D orientations, the
-/// 2D limit of the fraction (π/√12 = 0.90690) at and past it, and the 3D-only keys a
-/// 2D scene refuses (mixed 2D/3D scenes).
-const FLAT_SETS: [&[(&str, &str, &str)]; 10] = [
+/// 2D limit of the fraction (π/√12 = 0.90690) at and past it, a size table by area
+/// (`by = "area"`, 2D only), and the 3D-only keys a 2D scene refuses (mixed 2D/3D
+/// scenes).
+const FLAT_SETS: [&[(&str, &str, &str)]; 11] = [
     &[],
     &[
         ("phase.orientation", "kind", "\"vonmises\""),
@@ -177,6 +178,13 @@ const FLAT_SETS: [&[(&str, &str, &str)]; 10] = [
         ("phase.orientation", "kind", "\"tilt\""),
         ("phase.orientation", "axis", "\"x\""),
         ("phase.orientation", "kappa", "1.0"),
+    ],
+    &[
+        ("phase.size", "distribution", "\"table\""),
+        ("phase.size", "value", ""),
+        ("phase.size", "x", "[2.0, 3.0, 4.0]"),
+        ("phase.size", "cdf", "[0.0, 0.5, 1.0]"),
+        ("phase.size", "by", "\"area\""),
     ],
 ];
 

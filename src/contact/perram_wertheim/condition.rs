@@ -30,7 +30,9 @@
 //! `κ ≤ FAST_MAX_CONDITION`, which keeps that below [`FAST_TOL`]. The others it hands to
 //! the accurate path (a few ulps): then `κ` is larger, or the forms do not factor
 //! (semi-definite or thinner than [`MIN_RELATIVE_PIVOT`](crate::contact::MIN_RELATIVE_PIVOT)),
-//! or λ* is near an end ([`NEAR_END`](super::NEAR_END)).
+//! or λ* is near an end ([`NEAR_END`](super::NEAR_END)). The accurate path itself hands
+//! a form whose own `κ(Q)` (the ends' term above) exceeds [`FORM_MAX_CONDITION`] to
+//! the robust path.
 
 /// The constant of the rounding bound `|f̂ − f| / f ≤ FAST_ROUNDING · ε · κ` (module
 /// docs). On the pairs the fast path answers itself the measured ratio of its error to
@@ -53,6 +55,26 @@ pub const FAST_TOL: f64 = 262_144.0 * f64::EPSILON;
 /// accurate path ([`contact_function`](super::contact_function), a few ulps). On the
 /// typical reference set κ stays below 3.6e3, so no typical pair is handed over.
 pub const FAST_MAX_CONDITION: f64 = FAST_TOL / (2.0 * FAST_ROUNDING * f64::EPSILON);
+
+/// The largest condition number of either form, `κ(Q) = tr(diag(Q) Q⁻¹)` (module docs:
+/// the ends' `κ`), that the common path of [`contact_function`](super::contact_function)
+/// answers: `2^27 ≈ 1.3e8`, a needle or a flat disc turned off the axes with an aspect
+/// ratio of about 1.6e4 (`κ ≈ α²/2` at 45°). A form beyond it, whose pivots carry a
+/// relative rounding of `ε κ(Q)` above `2^-25` that the corrector's refined `f` and
+/// `g` start from, goes to the path of module `robust`, which forms the coefficients of
+/// `f` in double-double. Measured on 3.2 million random pairs (needles and discs of
+/// aspect ratios 10 to 1.6e6 against ellipses and ellipsoids of semi-axes up to 1e8
+/// smaller, and nearly identical needles; 2D and 3D), the common path's μ² against the
+/// robust one's (itself within 1.6 ε of `tools/contact_exact.py`): at most 3.9 ε below
+/// `κ = 1e9`, 14 ε below 1e10, 228 ε (λ 2e-9 off) near `1/MIN_RELATIVE_PIVOT`, where
+/// the fuzz target `contact_bits_2d` found μ² of a pair and of its swap 2.9e-12 apart
+/// (defect 16 of `docs/reliability.md`). Below the limit that measurement is not a
+/// bound: the fuzz targets have since found forms of `κ(Q)` 1e6 to 1.2e8 whose λ* lies
+/// within 3e-5 of an end, or with `r12` of 1e61, answered up to 1.7e-13 off (open
+/// defect 18 there). `κ` of the reference sets' forms is at most 6.3e7 (aspect ratios
+/// to 1e4), so none of them changes path; the robust path takes about 1.6 µs per pair
+/// against the common path's 0.6 µs on such forms.
+pub const FORM_MAX_CONDITION: f64 = (1u64 << 27) as f64;
 
 use crate::contact::scale::Prepared;
 use crate::contact::sym::{larger, Arith, PencilParts};
@@ -111,6 +133,15 @@ pub(crate) fn well_conditioned(sizes: &[(f64, f64); 5]) -> bool {
         worst = larger(worst, excess);
     }
     worst <= 0.0
+}
+
+/// Whether both forms' `κ(Q)` (the ends of [`sizes`]) are at most
+/// [`FORM_MAX_CONDITION`], without a division; false for a NaN. Only pairs whose `κ` is
+/// above [`FAST_MAX_CONDITION`] need the test: the ends are among the five pairs.
+#[inline(always)]
+pub(crate) fn forms_resolved(sizes: &[(f64, f64); 5]) -> bool {
+    let [(end1, det1), (end2, det2), ..] = *sizes;
+    end1 <= FORM_MAX_CONDITION * det1 && end2 <= FORM_MAX_CONDITION * det2
 }
 
 /// The condition number `κ` (module docs) that decides whether

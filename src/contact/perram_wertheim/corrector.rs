@@ -82,8 +82,11 @@ pub(super) fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64,
 /// How far λ of [`contact_function`](super::contact_function) may lie from λ* at a
 /// pair on its common path: `√(2 GAIN_ROUNDING_TOL · f / g′)` at `lambda`, with `f`
 /// and `g′ = −f″` of the refined evaluation; `None` where that evaluation fails or `f`
-/// is not curved there (forms that do not factor, λ at an end: the pairs of module
-/// `robust`, whose λ is held by `LOG_Y_STEP` instead).
+/// is not curved there (forms that do not factor, λ at an end: pairs of module
+/// `robust`, whose λ is held by `LOG_Y_STEP` instead). The definite forms beyond
+/// [`FORM_MAX_CONDITION`](crate::contact::FORM_MAX_CONDITION) that module also takes
+/// get a bound, which their λ (measured: within 5e-15 of `tools/contact_exact.py`'s)
+/// meets.
 ///
 /// μ² is stationary in λ, so the corrector needs `g = −f′` only to `δg` with
 /// `δg²/(2g′) ≤ GAIN_ROUNDING_TOL · f` for μ² to be right to `ε/8`
@@ -204,6 +207,37 @@ mod tests {
     fn corrector_adds_a_small_gain() {
         let (mu2, lambda) = finished(&refined(1e-6, 1.0), 0.5, (0.0, 1.0)).unwrap();
         assert_eq!((mu2, lambda), (1.0 + 0.5e-12, 0.5 - 1e-6 - 0.5e-12));
+    }
+
+    /// Defect 14 of `docs/reliability.md` (fuzz target `contact_bits_2d`): from the
+    /// predictor's λ = 1 − 4.1e-7 on a needle of `κ(Q)` 3e11 (which the robust path now
+    /// takes, `FORM_MAX_CONDITION`), the refined `g′` is not positive, and taking that
+    /// for convergence answered μ² 2.0e-5 below `tools/contact_exact.py`'s
+    /// 1.3015266575024577e31; closing the bracket on the sign of `g` leaves 1e-12 (the
+    /// pivots' rounding, `ε κ(Q)`, bounds it there, 1e-11 with room).
+    #[test]
+    fn correct_further_closes_its_bracket_where_the_curvature_is_lost_to_rounding() {
+        let r = [7.477750072378836e20, 5.754711558261857e20, 0.0];
+        let q1 = [
+            7.477080264586548e20,
+            7.477080264543605e20,
+            0.0,
+            7.477080264523472e20,
+            0.0,
+            7.47708026455501e20,
+        ];
+        let q2 = [
+            0.025132242838541666,
+            0.00047679344813029615,
+            0.0,
+            0.000484719701714185,
+            0.0,
+            0.012808481270127925,
+        ];
+        let c = correct_further(&r, &q1, &q2, 0, 0.999_999_588_256_795_9, 1).unwrap();
+        let exact = 1.301_526_657_502_457_7e31;
+        assert!((c.mu2 - exact).abs() <= 1e-11 * exact, "{c:?}");
+        assert_eq!(c.stop, Stop::Converged);
     }
 
     /// ...unless the third-order term left out is above ε/8 (here 1e10 · 1e-18 / 6),

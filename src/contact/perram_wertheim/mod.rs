@@ -50,7 +50,7 @@ pub const CORRECTOR_SWITCH_GAIN: f64 = 1e-4;
 /// `κ ≤` [`FAST_MAX_CONDITION`]` = 2^15`, so that whenever it reports
 /// [`Stop::Converged`] the relative error of μ² is at most [`FAST_TOL`]` ≈ 5.8e-11`.
 /// Other pairs (`κ` larger: nearly identical elongated ellipsoids, whose coefficients
-/// cancel, or aspect ratios near 1e4; forms that do not factor; λ* within
+/// cancel, or aspect ratios near 1e4 and beyond; forms that do not factor; λ* within
 /// [`NEAR_END`] of an end) get [`contact_function`]'s answer, a few ulps, bitwise.
 /// Measured: 4.3e-14 on the typical set, at most 1.3e-12 on every extreme category
 /// (`tests/contact_reference.rs`, BENCHMARKS.md).
@@ -116,8 +116,10 @@ pub(crate) fn contact_function_fast_factored(
 /// [`ContactError::NotPositiveDefinite`]. Sizes any distance apart are answered (two
 /// balls of radii 1 and 1e-150 at distance 1: μ² = 1). μ² beyond double range is
 /// [`ContactError::Overflow`]. These pairs, forms thinner than [`MIN_RELATIVE_PIVOT`]
-/// resolves, and pairs whose λ* is within [`NEAR_END`] of an end, go through a slower
-/// path with coefficients in double-double (module `robust`), which is as accurate.
+/// resolves, forms whose condition number is above [`FORM_MAX_CONDITION`] (needles and
+/// flat discs of aspect ratio above about 1.6e4, turned off the axes), and pairs whose
+/// λ* is within [`NEAR_END`] of an end, go through a slower path with coefficients in
+/// double-double (module `robust`), which is as accurate.
 ///
 /// [`MIN_RELATIVE_PIVOT`]: super::MIN_RELATIVE_PIVOT
 ///
@@ -210,9 +212,14 @@ fn solve_prepared(
         let (t, stop, iterations) = predict_with(&rational, t0, HALLEY_FINAL_GAIN, true)?;
         return p.finish(rational.f(t), t, stop, iterations);
     }
-    let conditioned = well_conditioned(&sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b));
-    if !(inside & (conditioned | (mode == Mode::Checked))) {
+    let all = sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b);
+    if !(inside & (well_conditioned(&all) | (mode == Mode::Checked))) {
         return handed_over(input, inside);
+    }
+    // Checked only: a form beyond FORM_MAX_CONDITION has κ above FAST_MAX_CONDITION.
+    if mode == Mode::Checked && !forms_resolved(&all) {
+        let (r12, q1, q2) = input;
+        return solve_robust(r12, q1, q2, 0);
     }
     let rational = Rational::from_coefficients(a, b);
     // Built before the predictor runs, so that its work fills the predictor's latency.
@@ -359,8 +366,10 @@ mod robust_tests;
 mod timing;
 
 pub use batch::{contact_functions, contact_functions_fast};
-pub use condition::{fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL};
-use condition::{sizes, well_conditioned};
+pub use condition::{
+    fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL, FORM_MAX_CONDITION,
+};
+use condition::{forms_resolved, sizes, well_conditioned};
 use corrector::{correct, correct_checking, correct_further, finished};
 pub use corrector::{lambda_bound, CUBIC_TERM_TOL};
 pub(crate) use exact::rank;

@@ -1,6 +1,7 @@
 //! The contact function of the pairs the common path does not take: semi-definite
 //! forms (flat discs, zero-radius needles, points), forms thinner than
-//! [`MIN_RELATIVE_PIVOT`](crate::contact::MIN_RELATIVE_PIVOT) resolves, sizes so far
+//! [`MIN_RELATIVE_PIVOT`](crate::contact::MIN_RELATIVE_PIVOT) resolves or conditioned
+//! beyond [`FORM_MAX_CONDITION`](crate::contact::FORM_MAX_CONDITION), sizes so far
 //! apart that λ* lies within [`NEAR_END`] of an end, or that the coefficients of `f`
 //! would leave the double range together.
 //!

@@ -124,9 +124,14 @@ fn eight<const ACCURATE: bool>(
     let inside = t0
         .ge(F::splat(NEAR_END))
         .and(t0.le(F::splat(1.0 - NEAR_END)));
-    let conditioned = well_conditioned_lanes(&sizes(&r, &q1, &q2, &parts, &ca, &cb));
+    let all = sizes(&r, &q1, &q2, &parts, &ca, &cb);
+    let conditioned = well_conditioned_lanes(&all);
     let candidates = match ACCURATE {
-        true => plain.and(factored).and(inside),
+        // A form beyond FORM_MAX_CONDITION: the scalar code's robust path.
+        true => plain
+            .and(factored)
+            .and(inside)
+            .and(forms_resolved_lanes(&all)),
         false => plain.and(factored).and(inside).and(conditioned),
     };
     let (t, iterations, predicted) = predict_lanes(&poly, t0, switch, candidates, !ACCURATE);
@@ -188,6 +193,15 @@ fn well_conditioned_lanes(sizes: &[(F, F); 5]) -> Mask {
         worst = excess.gt(worst).select(excess, worst);
     }
     worst.le(F::splat(0.0))
+}
+
+/// [`forms_resolved`](super::condition::forms_resolved), lane by lane: the same products
+/// and comparisons.
+#[inline(always)]
+fn forms_resolved_lanes(sizes: &[(F, F); 5]) -> Mask {
+    let [(end1, det1), (end2, det2), ..] = *sizes;
+    let bound = |det: F| FORM_MAX_CONDITION * det;
+    end1.le(bound(det1)).and(end2.le(bound(det2)))
 }
 
 /// [`Rational::new`]'s scaling of a set of coefficients, lane by lane: the exponents
