@@ -21,10 +21,11 @@
 //!    shrunk by its smallest μ is a clean state at once, and the scale is bisected
 //!    between the best clean scale and the smallest stuck one until they are within
 //!    `jam_resolution` (relative; a scene parameter), the target itself tried once as
-//!    soon as it lies between the clean end and the midpoint (`tries_target`). Near the jamming point
-//!    relaxations slow down without end (critical slowing down), so each trial below
-//!    the target has a budget of [`trial_steps`](ProtocolParams::trial_steps) steps
-//!    (times `effort`, a scene parameter, when below 1), and one that runs out of it
+//!    soon as it lies between the clean end and the midpoint (`tries_target`). Near
+//!    the jamming point relaxations slow down without end (critical slowing down), so
+//!    each trial below the target has a budget of
+//!    [`trial_steps`](ProtocolParams::trial_steps) steps (times `effort`, a scene
+//!    parameter, when below 1), and one that runs out of it
 //!    counts as jammed at that scale (below `effort = 1`, so does the target's own
 //!    relaxation far above the jamming point, *deep*, after four such budgets). A
 //!    first jam that is *shallow* (the target just above the jamming point: the
