@@ -12,9 +12,9 @@ Pipeline (issue 29's findings): each grain an affinely transformed OCC sphere; t
 images of the grains crossing the box cut to it and fragmented with it, the others
 holes of the matrix (build_geometry); the packing's window is shifted so every
 grain clears the box faces by a margin (thin caps mesh badly);
-opposite faces paired by centre of mass and area, then setPeriodic; HXT for the
-volume; when gmsh fails, a second attempt on the geometry rebuilt, with sizes from
-curvature;
+opposite faces paired by centre of mass and area, then setPeriodic; the surface mesh,
+repaired where gmsh fails on it (mesh_surface.py); HXT for the volume; when gmsh fails,
+a second attempt on the geometry rebuilt, with sizes from curvature;
 periodic nodes paired by coordinates and snapped exactly onto their images plus the
 box length; for quadratic elements, the middle nodes added to this linear mesh
 afterwards and made periodic in turn (mesh_quadratic.py).
@@ -31,6 +31,7 @@ from mesh_nodes import (check_faces, extract, group_by_grain, number_nodes,
                         pair_by_coordinates, snap, tet_volume)
 from mesh_quadratic import elevate
 from mesh_plane import mesh_plane
+from mesh_surface import surface_mesh
 from mesh_write import finish
 
 # Exit code for "gmsh could not mesh this packing" (pack maps it to its message).
@@ -75,13 +76,16 @@ def configure(gmsh, job):
 
 
 def tetrahedra(gmsh):
-    """gmsh's 3D mesh; one without an element is a failure (gmsh's generate returned
-    without an exception and without elements after an HXT failure)."""
+    """gmsh's 3D mesh on the repaired surface mesh; returns the repairs. One without
+    an element is a failure (gmsh's generate returned without an exception and without
+    elements after an HXT failure)."""
+    repairs = surface_mesh(gmsh)
     gmsh.model.mesh.generate(3)
     types, tags, _ = gmsh.model.mesh.getElements(3)
     if not any(len(t) for t in tags):
         log = [line for line in gmsh.logger.get() if "rror" in line][-2:]
         raise Exception("gmsh returned no elements" + (": " + "; ".join(log) if log else ""))
+    return repairs
 
 
 def model(gmsh, job, origin):
@@ -101,12 +105,12 @@ def generate(gmsh, job, origin, volumes):
     triangles, a periodic curve meshed differently on its two sides), once more in a
     new gmsh session on the geometry rebuilt, with sizes from curvature (in the same
     session, after a failure, gmsh's mesh.clear() and a second generate, or a new
-    model, gave no elements). Returns (volumes, whether the second attempt was
-    needed, its geometry seconds). A failure of both names gmsh's messages and the
+    model, gave no elements). Returns (volumes, the first attempt's error if the
+    second was needed, the second's geometry seconds, the surface repairs of the
+    attempt kept). A failure of both names gmsh's messages and the
     surfaces its log blames (`where`)."""
     try:
-        tetrahedra(gmsh)
-        return volumes, False, 0.0
+        return volumes, None, 0.0, tetrahedra(gmsh)
     except Exception as e:  # gmsh raises plain Exception
         first = f"{e}{where(gmsh, volumes)}"
     gmsh.finalize()
@@ -117,12 +121,12 @@ def generate(gmsh, job, origin, volumes):
     volumes, _ = model(gmsh, job, origin)
     rebuilt = time.monotonic() - started
     try:
-        tetrahedra(gmsh)
+        repairs = tetrahedra(gmsh)
     except Exception as second:
         raise MeshError(f"{second}{where(gmsh, volumes)} (in a second attempt with "
                         f"Mesh.MeshSizeFromCurvature = {RETRY_CURVATURE}; the first: "
                         f"{first})") from None
-    return volumes, True, rebuilt
+    return volumes, first, rebuilt, repairs
 
 
 def mesh(gmsh, job):
@@ -135,7 +139,7 @@ def mesh(gmsh, job):
     configure(gmsh, job)
     volumes, pairs = model(gmsh, job, origin)
     geometry_seconds = time.monotonic() - started
-    volumes, retried, rebuilt = generate(gmsh, job, origin, volumes)
+    volumes, first, rebuilt, repairs = generate(gmsh, job, origin, volumes)
     geometry_seconds += rebuilt
     pieces = extract(gmsh, volumes, 1)
     new, coords = number_nodes(gmsh, pieces, origin)
@@ -158,7 +162,8 @@ def mesh(gmsh, job):
             vol = tet_volume([coords[n] for n in nodes[:4]])
             elements.append((grain, nodes, float(q), vol))
     report = {"geometry_seconds": geometry_seconds, "mesh_seconds": mesh_seconds,
-              "retried": retried, "margins": margins, "pairs": pairs, "worst": worst,
+              "retried": first is not None, "first_error": first, "repairs": repairs,
+              "margins": margins, "pairs": pairs, "worst": worst,
               "straightened": straightened}
     return finish(gmsh, job, coords, elements, images, origin, report)
 

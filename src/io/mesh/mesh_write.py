@@ -226,6 +226,8 @@ def finish(gmsh, job, coords, elements, images, origin, report):
         "geometry_seconds": report["geometry_seconds"],
         "mesh_seconds": report["mesh_seconds"],
         "retried_with_curvature": report["retried"],
+        "first_attempt_error": report.get("first_error"),
+        "surface_repairs": report.get("repairs", []),
         "origin": origin,
         "face_margin": report["margins"] if job["periodic"] else None,
         "periodic_face_pairs": report["pairs"],

@@ -53,7 +53,7 @@ const SCRIPT_MESH_FAILED: i32 = 3;
 
 /// The mesher's Python modules (name, source), embedded so that `pack` needs no file
 /// beside it; `LOADER` makes them importable and runs `gmsh_mesh.main()`.
-const MODULES: [(&str, &str); 7] = [
+const MODULES: [(&str, &str); 8] = [
     ("gmsh_mesh", include_str!("gmsh_mesh.py")),
     ("mesh_common", include_str!("mesh_common.py")),
     ("mesh_geometry", include_str!("mesh_geometry.py")),
@@ -61,6 +61,7 @@ const MODULES: [(&str, &str); 7] = [
     ("mesh_write", include_str!("mesh_write.py")),
     ("mesh_plane", include_str!("mesh_plane.py")),
     ("mesh_quadratic", include_str!("mesh_quadratic.py")),
+    ("mesh_surface", include_str!("mesh_surface.py")),
 ];
 
 /// Run as `python -c LOADER job.json`, with [`MODULES`] as a JSON object on stdin.
@@ -119,6 +120,15 @@ pub struct MeshStats {
     /// geometry rebuilt in a new gmsh session, with sizes from curvature (its seconds
     /// count in `geometry_seconds`).
     pub retried_with_curvature: bool,
+    /// gmsh's error in the first attempt, when the mesh is the second one's.
+    #[serde(default)]
+    pub first_attempt_error: Option<String>,
+    /// The repairs of the surface mesh where gmsh failed on it (`mesh_surface.py`):
+    /// Delaunay on a surface gmsh left invalid, more nodes on a curve whose periodic
+    /// copy mismatched or whose two surfaces held the same triangles. Empty when the
+    /// first surface mesh was sound.
+    #[serde(default)]
+    pub surface_repairs: Vec<String>,
     /// Lower corner of the meshed window of the periodic packing (two coordinates in
     /// 2D, where the mesh lies in the plane z = 0).
     pub origin: Vec<f64>,
