@@ -4,7 +4,7 @@
 
 mod support;
 
-use grainpack::scene::{MeshSpec, Scene, DEFAULT_MESH_SIZE, MIN_MESH_GAP};
+use grainpack::scene::{MeshSpec, RveFill, Scene, DEFAULT_MESH_SIZE, MIN_MESH_GAP};
 use support::files::{files_in, scratch};
 use support::scene::{assert_starts, scene_error};
 
@@ -39,14 +39,16 @@ fn mesh_keys_become_typed_values() {
         mesh("mesh = true"),
         Some(MeshSpec {
             size: DEFAULT_MESH_SIZE,
-            order: 1
+            order: 1,
+            fill: RveFill::Matrix,
         })
     );
     assert_eq!(
         mesh("mesh = true\nmesh_size = 0.15\nmesh_order = 2"),
         Some(MeshSpec {
             size: 0.15,
-            order: 2
+            order: 2,
+            fill: RveFill::Matrix,
         })
     );
 }
@@ -101,6 +103,11 @@ fn bad_mesh_values_name_key_line_and_column() {
         (
             "mesh_order = 2",
             "14:14: output.mesh_order = 2",
+            "applies only with mesh = true",
+        ),
+        (
+            "mesh_fill = \"grains\"",
+            "14:13: output.mesh_fill = \"grains\"",
             "applies only with mesh = true",
         ),
     ] {
@@ -159,7 +166,8 @@ fn a_2d_scene_takes_the_mesh_keys_and_names_its_elements() {
         spec,
         Some(MeshSpec {
             size: DEFAULT_MESH_SIZE,
-            order: 2
+            order: 2,
+            fill: RveFill::Matrix,
         })
     );
     assert_starts(
@@ -170,5 +178,26 @@ fn a_2d_scene_takes_the_mesh_keys_and_names_its_elements() {
     assert_starts(
         &scene_error(&plane("mesh = true").replace("gap = 0.05", "gap = 0.01")),
         "scene.toml:12:7: packing.gap = 0.01: output.mesh = true",
+    );
+}
+
+#[test]
+fn a_mesh_with_the_grains_fill_has_no_matrix() {
+    let keys = "mesh = true\nmesh_fill = \"grains\"";
+    let without_matrix =
+        scene(0.05, keys).replace("[matrix]\nelastic = { E = 10.0, nu = 0.35 }\n", "");
+    let spec = Scene::from_str(&without_matrix, "scene.toml")
+        .unwrap_or_else(|e| panic!("the grains fill rejected: {e}"))
+        .output
+        .mesh;
+    assert_eq!(spec.map(|m| m.fill), Some(RveFill::Grains));
+    // Its [matrix] would describe nothing.
+    assert_starts(
+        &scene_error(&scene(0.05, keys)),
+        "scene.toml:9:1: matrix = ",
+    );
+    assert!(
+        scene_error(&scene(0.05, "mesh = true\nmesh_fill = \"voids\""))
+            .starts_with("scene.toml:15:13: ")
     );
 }

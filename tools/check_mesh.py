@@ -64,8 +64,7 @@ name = "grains"
 size = {{ distribution = "uniform", min = {dmin}, max = {dmax} }}
 aspect_ratio = {{ distribution = "uniform", min = 1.2, max = 2.0 }}
 elastic = {{ E = {e_grain}, nu = 0.3 }}
-[matrix]
-elastic = {{ E = {e_matrix}, nu = {nu_matrix} }}
+{matrix}
 [output]
 dir = "{name}"
 vtk = false
@@ -74,6 +73,7 @@ statistics_png = false
 mesh = true
 mesh_size = {mesh_size}
 mesh_order = {order}
+mesh_fill = "{fill}"
 """
 
 # Homogeneous: grains and matrix of one material, so the periodic solution is the
@@ -94,6 +94,11 @@ SCENES = {
     "quadratic": dict(seed=1, fraction=0.2, dmin=2.5, dmax=4.0, e_grain=210.0,
                       e_matrix=210.0, nu_matrix=0.3, boundary="periodic", order=2,
                       mesh_size=0.5, directions=1),
+    # The grains fill: the elements between the grains shared out among them, no
+    # matrix; one material, so E and nu come back only if every element has it.
+    "grains_fill": dict(seed=1, fraction=0.2, dmin=2.5, dmax=4.0, e_grain=210.0,
+                        e_matrix=210.0, nu_matrix=0.3, boundary="periodic", order=1,
+                        fill="grains", directions=1),
     # And the composite, on which that route failed: about 1 min of CPU, so only when
     # asked for (--only quadratic_composite).
     "quadratic_composite": dict(seed=12, fraction=0.3, dmin=2.5, dmax=4.0, e_grain=100.0,
@@ -250,6 +255,23 @@ def check_cells(out, summary, failures):
     return vol[grain >= 0].sum() / box
 
 
+def check_grains_fill(out, summary, phi, failures):
+    """Every element is a grain's: in mesh.vtu (grain >= 0, fraction 1) and in
+    mesh.msh (gmsh writes the elements of physical groups only: all of them there, in
+    groups grain_<id>, no matrix group)."""
+    msh = meshio.read(os.path.join(out, "mesh.msh"))
+    names = set(msh.field_data)
+    tagged = len(msh.cell_data_dict["gmsh:physical"]["tetra"])
+    tets = summary["mesh"]["elements"]
+    print(f"{out}: grains fill {phi!r} of the box; mesh.msh: {len(names)} groups, "
+          f"{tagged} of {tets} tetrahedra in them")
+    if abs(phi - 1.0) > VOLUME_TOL:
+        failures.append(f"{out}: the grains fill {phi} of the mesh, not all of it")
+    if tagged != tets or not all(n.startswith("grain_") for n in names):
+        failures.append(f"{out}: mesh.msh's groups {sorted(names)[:5]} hold {tagged} of "
+                        f"{tets} tetrahedra")
+
+
 def check_walled(out, summary, failures, plane=False):
     """The deck as written, run by ccx: its template stretches the box by STRAIN along
     x on rollers, so a homogeneous box carries E * STRAIN * Ly * Lz; in 2D (plane
@@ -296,7 +318,10 @@ def main():
     for name, values in SCENES.items():
         if not name.startswith(args.only) or (values.get("slow") and not args.only):
             continue
-        values = {"mesh_size": 0.3, **values}
+        values = {"mesh_size": 0.3, "fill": "matrix", **values}
+        values["matrix"] = ("" if values["fill"] == "grains" else
+                            "[matrix]\nelastic = {{ E = {e_matrix}, nu = {nu_matrix} }}"
+                            .format(**values))
         started = time.time()
         with open(os.path.join(work, name + ".toml"), "w") as f:
             f.write(SCENE.format(name=name, **values))
@@ -313,6 +338,8 @@ def main():
             continue
         check_periodic(out, summary, failures)
         phi = check_cells(out, summary, failures)
+        if values["fill"] == "grains":
+            check_grains_fill(out, summary, phi, failures)
         started = time.time()
         # The slow scene by CalculiX's iterative solver (4x faster than SPOOLES; too
         # loose, 1e-3 on nu, for the homogeneous check).

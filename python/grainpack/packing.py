@@ -142,7 +142,9 @@ class Packing:
         the paths written. Raises ``OSError`` with the CLI's message if it cannot."""
         return [os.fspath(p) for p in self._native._write(os.fspath(dir))]
 
-    def mesh(self, dir: str | os.PathLike[str], size: float = 0.3, order: int = 1) -> dict[str, Any]:
+    def mesh(
+        self, dir: str | os.PathLike[str], size: float = 0.3, order: int = 1, fill: str = "matrix"
+    ) -> dict[str, Any]:
         """Meshes the packing with gmsh as ``[output] mesh = true`` does (needs gmsh in
         this interpreter: ``pip install gmsh==4.15.2``, and a packing with
         ``packing.gap`` >= 0.02).
@@ -150,15 +152,19 @@ class Packing:
         Writes ``mesh.msh``, ``mesh.inp`` and ``mesh.vtu`` into ``dir`` (created if
         missing), all or none. ``size`` is the largest element edge over the smallest
         grain's equivalent diameter, ``order`` 1 (C3D4) or 2 (C3D10); a 2D packing is
-        meshed as plane-strain triangles, CPE3 or CPE6. Returns a dict:
+        meshed as plane-strain triangles, CPE3 or CPE6. ``fill`` is ``"matrix"`` (the
+        elements between the grains are the matrix) or ``"grains"`` (shared out among
+        the grains, as ``voxelise(fill="grains")`` shares voxels). Returns a dict:
         ``files`` (the paths), ``summary`` (what ``summary.json``'s ``mesh`` holds) and
         ``grid`` (``mesh.vtu`` as a ``pyvista.UnstructuredGrid`` when pyvista is
         installed, else None). Raises ``ValueError`` for bad arguments or a packing
         without the gap, ``RuntimeError`` with gmsh's message if it cannot mesh."""
         if isinstance(order, bool) or not isinstance(order, int):
             raise ValueError(f"order = {order!r}: must be 1 or 2")
+        if not isinstance(fill, str) or fill not in ("matrix", "grains"):
+            raise ValueError(f'fill = {fill!r}: must be "matrix" or "grains"')
         # gmsh runs in this interpreter (the one the caller installed gmsh into).
-        files, stats = self._native._mesh(os.fspath(dir), float(size), order, sys.executable)
+        files, stats = self._native._mesh(os.fspath(dir), float(size), order, fill, sys.executable)
         files = [os.fspath(p) for p in files]
         try:
             import pyvista

@@ -144,7 +144,8 @@ impl PyPacking {
     }
 
     /// Writes the conforming mesh (`mesh.msh`, `mesh.inp`, `mesh.vtu`) into `dir`, as
-    /// `[output] mesh = true` with `mesh_size = size`, `mesh_order = order`; returns the
+    /// `[output] mesh = true` with `mesh_size = size`, `mesh_order = order`, `mesh_fill =
+    /// fill` ("matrix" or "grains"); returns the
     /// paths and the summary's `mesh` entry as JSON. gmsh runs in the Python `python`
     /// (the caller's own interpreter).
     fn _mesh(
@@ -153,6 +154,7 @@ impl PyPacking {
         dir: PathBuf,
         size: f64,
         order: u8,
+        fill: &str,
         python: String,
     ) -> PyResult<(Vec<PathBuf>, String)> {
         let (lo, hi) = MESH_SIZE_RANGE;
@@ -166,6 +168,15 @@ impl PyPacking {
                 "order = {order}: must be 1 (C3D4, CPE3 in 2D) or 2 (C3D10, CPE6 in 2D)"
             )));
         }
+        let fill = match fill {
+            "matrix" => RveFill::Matrix,
+            "grains" => RveFill::Grains,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "fill = {fill:?}: must be \"matrix\" or \"grains\" (as output.mesh_fill)"
+                )))
+            }
+        };
         let gap = self.scene.packing.gap;
         if gap < MIN_MESH_GAP {
             return Err(PyValueError::new_err(format!(
@@ -175,7 +186,7 @@ impl PyPacking {
         }
         gmsh_version(&python).map_err(|e| PyRuntimeError::new_err(chain(&e)))?;
         let mut scene = self.scene.clone();
-        scene.output.mesh = Some(MeshSpec { size, order });
+        scene.output.mesh = Some(MeshSpec { size, order, fill });
         let (grains, threads) = (&self.result.packing.grains, self.result.threads);
         let stats = py
             .detach(|| {

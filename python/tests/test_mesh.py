@@ -36,6 +36,8 @@ def test_bad_sizes_and_orders_are_refused():
         p.mesh("unused", size=5.0)
     with pytest.raises(ValueError, match="order = 3"):
         p.mesh("unused", order=3)
+    with pytest.raises(ValueError, match="fill = 'voids'"):
+        p.mesh("unused", fill="voids")
 
 
 def test_the_mesh_holds_every_grain_and_fills_the_box(tmp_path):
@@ -89,3 +91,19 @@ def test_a_2d_packing_is_meshed_as_plane_strain_triangles(tmp_path):
     # The triangles fill the rectangle (curved or not: their edges are shared).
     area = grid.compute_cell_sizes(length=False, area=True, volume=False)["Area"].sum()
     assert abs(area / 80.0 - 1.0) < 1e-9
+
+
+def test_the_grains_fill_gives_every_element_to_a_grain(tmp_path):
+    pytest.importorskip("gmsh")
+    p = gp.pack(gp.Scene.from_toml(PLANE_SCENE), progress=False)
+    out = p.mesh(tmp_path / "m", fill="grains")
+    fractions = out["summary"]["phase_volume_fractions"]
+    assert [f["phase"] for f in fractions] == [0]
+    assert abs(fractions[0]["mesh"] - 1.0) < 1e-9
+    with open(out["files"][1]) as f:
+        deck = f.read()
+    assert "MATRIX" not in deck
+    grid = out["grid"]
+    if grid is None:
+        return
+    assert set(np.unique(grid.cell_data["grain"])) == set(p.ids.tolist())

@@ -125,6 +125,11 @@ pub struct MeshSpec {
     /// Element order: 1 for linear (C3D4), 2 for quadratic (C3D10) tetrahedra
     /// (`mesh_order`, default 1).
     pub order: u8,
+    /// What the elements between the grains become (`mesh_fill`): the matrix (the
+    /// default), or shared out among the grains as the RVE's `rve_fill = "grains"`
+    /// shares its voxels (each element to the grain that must be scaled least to reach
+    /// its centroid).
+    pub fill: RveFill,
 }
 
 impl Default for MeshSpec {
@@ -132,6 +137,7 @@ impl Default for MeshSpec {
         Self {
             size: DEFAULT_MESH_SIZE,
             order: 1,
+            fill: RveFill::Matrix,
         }
     }
 }

@@ -131,6 +131,7 @@ const TABLES: [(&str, &[&str]); 11] = [
             "mesh",
             "mesh_size",
             "mesh_order",
+            "mesh_fill",
         ],
     ),
 ];
@@ -272,6 +273,10 @@ pub fn scene_from_choices(choices: &mut Choices) -> String {
                     if !v.is_empty() {
                         entries.push(entry(t, p, k, v));
                     }
+                }
+                // The grains fill has no matrix: its `[matrix]` would be refused.
+                if edit == ("output", "mesh_fill", "\"grains\"") {
+                    entries.retain(|e| !e.table.starts_with("matrix"));
                 }
             }
             _ => {

@@ -1,11 +1,11 @@
-//! The conforming mesh's keys (`output.mesh`, `mesh_size`, `mesh_order`, and the
+//! The conforming mesh's keys (`output.mesh`, `mesh_size`, `mesh_order`, `mesh_fill`, and the
 //! `packing.gap` the mesh needs): edits that make a meshable scene and then set one of
 //! them at or past its limits, and the property the scene checks hold them to. The
 //! mesh itself needs gmsh, which the fuzz targets never run: `run::run` packs, only
 //! the CLI meshes.
 
 use grainpack::io::scene::SceneError;
-use grainpack::scene::{Scene, MESH_SIZE_RANGE, MIN_MESH_GAP};
+use grainpack::scene::{RveFill, Scene, MESH_SIZE_RANGE, MIN_MESH_GAP};
 
 /// What a mesh edit sets first (table, key, value; `phase.elastic` on every phase): a
 /// scene that validates with a mesh of the default size and order.
@@ -20,9 +20,10 @@ pub const MESHABLE: [(&str, &str, &str); 6] = [
 
 /// The keys a mesh edit then sets (or removes, with an empty value), with values at
 /// and past their documented limits (`docs/config.md`, "Conforming mesh"):
-/// `mesh_size` in [0.05, 1], `mesh_order` 1 or 2, `gap` at least 0.02, wrong types,
-/// and the materials the mesh needs.
-pub const MESH_EDITS: [(&str, &str, &[&str]); 6] = [
+/// `mesh_size` in [0.05, 1], `mesh_order` 1 or 2, `mesh_fill` "matrix" or "grains"
+/// (which refuses the `[matrix]` the first edits set), `gap` at least 0.02, wrong
+/// types, and the materials the mesh needs.
+pub const MESH_EDITS: [(&str, &str, &[&str]); 7] = [
     (
         "output",
         "mesh_size",
@@ -73,16 +74,31 @@ pub const MESH_EDITS: [(&str, &str, &[&str]); 6] = [
         "mesh",
         &["true", "false", "1", "\"true\"", "[]", ""],
     ),
+    (
+        "output",
+        "mesh_fill",
+        &[
+            "\"matrix\"",
+            "\"grains\"",
+            "\"voids\"",
+            "\"Grains\"",
+            "\"\"",
+            "1",
+            "[]",
+            "",
+        ],
+    ),
     ("matrix.elastic", "E", &["3.0", "0", "-1", "nan", ""]),
     ("phase.elastic", "nu", &["0.3", "0.5", "-1", "nan", ""]),
 ];
 
 /// The mesh keys of `[output]`, as a refusal's key path names them.
-const MESH_KEYS: [&str; 3] = ["mesh", "mesh_size", "mesh_order"];
+const MESH_KEYS: [&str; 4] = ["mesh", "mesh_size", "mesh_order", "mesh_fill"];
 
 /// The mesh's part of the scene checks. A valid scene with a mesh has a `packing.gap`
 /// of at least [`MIN_MESH_GAP`], a `mesh_size` in [`MESH_SIZE_RANGE`], an order of 1 or
-/// 2, and elastic constants on every phase and on the matrix (3D and 2D alike: 2D
+/// 2, and elastic constants on every phase and, with the matrix fill, on the matrix
+/// (the grains fill has no matrix) (3D and 2D alike: 2D
 /// scenes are meshed as triangles since issue 29's second round); a refusal whose
 /// line is a mesh key's (`mesh_size = …` under `[output]`) names that key
 /// (`output.mesh_size`), and a refusal naming a mesh key or `packing.gap` because of
@@ -100,7 +116,7 @@ pub fn check_mesh(result: &Result<Scene, SceneError>, text: &str) {
                     && (lo..=hi).contains(&mesh.size)
                     && matches!(mesh.order, 1 | 2)
                     && scene.phases.iter().all(|p| p.elastic.is_some())
-                    && scene.matrix.elastic.is_some(),
+                    && (mesh.fill == RveFill::Grains) != scene.matrix.elastic.is_some(),
                 "a mesh accepted outside its limits: {mesh:?}, gap {}: {text:?}",
                 scene.packing.gap
             );

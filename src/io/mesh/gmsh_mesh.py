@@ -26,6 +26,7 @@ import sys
 import time
 
 from mesh_common import MeshError
+from mesh_fill import share_out
 from mesh_geometry import build_geometry, half_extents, make_periodic, window
 from mesh_nodes import (check_faces, extract, group_by_grain, number_nodes,
                         pair_by_coordinates, snap, tet_volume)
@@ -154,6 +155,9 @@ def mesh(gmsh, job):
         worst = max(worst, mid_worst)
     if job["periodic"]:
         check_faces(coords, images, origin, size)
+    if job.get("fill") == "grains":
+        pieces = share_out(gmsh, job, volumes, pieces, coords, origin,
+                           4 if job["order"] == 1 else 11)
     mesh_seconds = time.monotonic() - started - geometry_seconds
     elements = []
     for grain, tags, conn in pieces:

@@ -13,7 +13,7 @@ use crate::io::decks::{
 };
 use crate::packing::PackedGrain;
 use crate::scene::Elastic;
-use crate::scene::{Boundary, Scene};
+use crate::scene::{Boundary, RveFill, Scene};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -29,6 +29,8 @@ pub struct MeshJob<'a> {
     grains: Vec<JobGrain>,
     element_size: f64,
     order: u8,
+    /// "matrix", or "grains": the elements between the grains shared out among them.
+    fill: RveFill,
     threads: usize,
     length_unit: &'static str,
     stress_unit: &'static str,
@@ -103,13 +105,15 @@ pub fn mesh_job<'a>(
             }
         })
         .collect();
-    let m = scene.matrix.elastic.unwrap_or(fallback);
-    materials.push(JobMaterial {
-        name: section_name("", matrix_name(scene)),
-        phase: scene.phases.len(),
-        young: m.young,
-        poisson: m.poisson,
-    });
+    if spec.fill == RveFill::Matrix {
+        let m = scene.matrix.elastic.unwrap_or(fallback);
+        materials.push(JobMaterial {
+            name: section_name("", matrix_name(scene)),
+            phase: scene.phases.len(),
+            young: m.young,
+            poisson: m.poisson,
+        });
+    }
     let [msh, inp, vtu] = files;
     let periodic = scene.domain.boundary == Boundary::Periodic;
     let plane = scene.domain.dimension == Dimension::Two;
@@ -135,6 +139,7 @@ pub fn mesh_job<'a>(
             .collect(),
         element_size: spec.size * smallest,
         order: spec.order,
+        fill: spec.fill,
         threads,
         length_unit: scene.units.length.symbol(),
         stress_unit: scene.units.stress.symbol(),

@@ -15,6 +15,7 @@ import math
 import time
 
 from mesh_common import MeshError
+from mesh_fill import share_out
 from mesh_geometry import half_extents, images, window
 from mesh_nodes import check_faces, number_nodes, pair_by_coordinates, snap
 from mesh_write import finish
@@ -175,6 +176,7 @@ def mesh_plane(gmsh, job):
             conn = [[int(nt[i * npe + j]) for j in range(npe)] for i in range(len(et))]
             pieces.append((grain, [int(e) for e in et], conn))
     new, coords = number_nodes(gmsh, pieces, origin)
+    pieces = [(grain, tags, [[new[n] for n in e] for e in conn]) for grain, tags, conn in pieces]
     images_ = {}
     worst = 0.0
     if job["periodic"]:
@@ -183,12 +185,13 @@ def mesh_plane(gmsh, job):
         images_ = pair_by_coordinates(coords, origin, size)
         worst = snap(gmsh, coords, images_, size)
         check_faces(coords, images_, origin, size)
+    if job.get("fill") == "grains":
+        pieces = share_out(gmsh, job, surfaces, pieces, coords, origin, etype)
     mesh_seconds = time.monotonic() - started - geometry_seconds
     elements = []
     for grain, tags, conn in pieces:
         quality = gmsh.model.mesh.getElementQualities(tags, "minSICN")
-        for e, q in zip(conn, quality):
-            nodes = [new[n] for n in e]
+        for nodes, q in zip(conn, quality):
             area = triangle_area([coords[n] for n in nodes[:3]])
             if area < 0.0:
                 nodes = [nodes[i] for i in REVERSED[npe]]

@@ -53,7 +53,7 @@ const SCRIPT_MESH_FAILED: i32 = 3;
 
 /// The mesher's Python modules (name, source), embedded so that `pack` needs no file
 /// beside it; `LOADER` makes them importable and runs `gmsh_mesh.main()`.
-const MODULES: [(&str, &str); 8] = [
+const MODULES: [(&str, &str); 9] = [
     ("gmsh_mesh", include_str!("gmsh_mesh.py")),
     ("mesh_common", include_str!("mesh_common.py")),
     ("mesh_geometry", include_str!("mesh_geometry.py")),
@@ -62,6 +62,7 @@ const MODULES: [(&str, &str); 8] = [
     ("mesh_plane", include_str!("mesh_plane.py")),
     ("mesh_quadratic", include_str!("mesh_quadratic.py")),
     ("mesh_surface", include_str!("mesh_surface.py")),
+    ("mesh_fill", include_str!("mesh_fill.py")),
 ];
 
 /// Run as `python -c LOADER job.json`, with [`MODULES`] as a JSON object on stdin.

@@ -252,6 +252,7 @@ pub(crate) struct RawOutput {
     pub mesh: Opt<bool>,
     pub mesh_size: Opt<f64>,
     pub mesh_order: Opt<i64>,
+    pub mesh_fill: Opt<RawFill>,
 }
 
 /// `output.rve_fill`.

@@ -23,7 +23,7 @@ use super::raw::{RawPacking, RawPhase, RawScene};
 use crate::contact::Dimension;
 use crate::laws::Distribution;
 use crate::scene::{
-    Domain, Orientation, PackingParams, Phase, PhaseTexture, Rotation, RveFill, Scene, Unjam,
+    Domain, Orientation, PackingParams, Phase, PhaseTexture, Rotation, Scene, Unjam,
 };
 use grain::{distribution, orientation};
 use plane::not_in_2d;
@@ -85,9 +85,8 @@ pub(super) fn scene(text: &str, file: &str) -> Result<Scene, SceneError> {
         let fill = output.rve.map(|r| r.fill);
         solver::solids(&src, &raw, &phases, &matrix, fill, "abaqus")?;
     }
-    if output.mesh.is_some() {
-        // The mesh always has a matrix: the film the gap leaves between the grains.
-        solver::solids(&src, &raw, &phases, &matrix, Some(RveFill::Matrix), "mesh")?;
+    if let Some(mesh) = output.mesh {
+        solver::solids(&src, &raw, &phases, &matrix, Some(mesh.fill), "mesh")?;
     }
 
     let scene = Scene {

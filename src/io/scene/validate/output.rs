@@ -55,7 +55,7 @@ pub(super) fn output(
     Ok(spec)
 }
 
-/// `mesh`, `mesh_size`, `mesh_order`. The gap the mesh needs is checked with
+/// `mesh`, `mesh_size`, `mesh_order`, `mesh_fill`. The gap the mesh needs is checked with
 /// `[packing]` (`validate::gap::meshable`).
 fn mesh(src: &Source, raw: &RawOutput, plane: bool) -> Result<Option<MeshSpec>, SceneError> {
     let on = raw.mesh.as_ref().is_some_and(|v| *v.get_ref());
@@ -65,6 +65,9 @@ fn mesh(src: &Source, raw: &RawOutput, plane: bool) -> Result<Option<MeshSpec>, 
         }
         if let Some(v) = &raw.mesh_order {
             return Err(src.invalid_at("output.mesh_order", v, "applies only with mesh = true"));
+        }
+        if let Some(v) = &raw.mesh_fill {
+            return Err(src.invalid_at("output.mesh_fill", v, "applies only with mesh = true"));
         }
         return Ok(None);
     }
@@ -100,6 +103,9 @@ fn mesh(src: &Source, raw: &RawOutput, plane: bool) -> Result<Option<MeshSpec>, 
                 ))
             }
         };
+    }
+    if let Some(v) = &raw.mesh_fill {
+        spec.fill = fill(*v.get_ref());
     }
     Ok(Some(spec))
 }
@@ -217,10 +223,10 @@ fn rve(src: &Source, raw: &RawOutput, domain: &Domain) -> Result<Option<RveSpec>
             ),
         ));
     }
-    let fill = match raw.rve_fill.as_ref().map(|f| *f.get_ref()) {
-        None | Some(RawFill::Grains) => RveFill::Grains,
-        Some(RawFill::Matrix) => RveFill::Matrix,
-    };
+    let fill = raw
+        .rve_fill
+        .as_ref()
+        .map_or(RveFill::Grains, |f| fill(*f.get_ref()));
     // A 2D RVE is one cell thick: it is its own section.
     let sections_png = match (&raw.sections_png, domain.dimension) {
         (Some(v), Dimension::Two) if *v.get_ref() => {
@@ -310,4 +316,11 @@ fn voxel_size(src: &Source, raw: &Spanned<f64>, domain: &Domain) -> Result<[usiz
         *n = count as usize;
     }
     Ok(cells)
+}
+
+fn fill(raw: RawFill) -> RveFill {
+    match raw {
+        RawFill::Grains => RveFill::Grains,
+        RawFill::Matrix => RveFill::Matrix,
+    }
 }

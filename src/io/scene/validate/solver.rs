@@ -52,8 +52,8 @@ pub(super) fn homogenization(
     Ok(Some(Homogenization { name, entry }))
 }
 
-/// `[matrix]`: only with `rve_fill = "matrix"` or `mesh = true`, where there is a
-/// matrix.
+/// `[matrix]`: only with `rve_fill = "matrix"` or `mesh = true` (with `mesh_fill =
+/// "matrix"`, its default), where there is a matrix.
 pub(super) fn matrix(
     src: &Source,
     raw: &RawScene,
@@ -62,12 +62,15 @@ pub(super) fn matrix(
     let Some(m) = &raw.matrix else {
         return Ok(Matrix::default());
     };
-    if output.rve.map(|r| r.fill) != Some(RveFill::Matrix) && output.mesh.is_none() {
+    if output.rve.map(|r| r.fill) != Some(RveFill::Matrix)
+        && output.mesh.map(|m| m.fill) != Some(RveFill::Matrix)
+    {
         return Err(src.invalid_at(
             "matrix",
             m,
             "applies only with a voxel RVE whose gaps are a matrix (output.rve_fill = \
-             \"matrix\") or a conforming mesh (output.mesh = true)",
+             \"matrix\") or a conforming mesh with a matrix (output.mesh = true, \
+             mesh_fill = \"matrix\")",
         ));
     }
     let m = m.get_ref();
