@@ -13,11 +13,22 @@ from mesh_common import quaternion_matrix
 
 def inverse_form(grain, dims):
     """Q^-1 = R diag(1/a^2) R^T in the first `dims` coordinates (a 2D grain turns
-    about z only, so its in-plane block is the ellipse's)."""
+    about z only, so its in-plane block is the ellipse's), as the upper triangle with
+    the off-diagonal entries doubled: t^2 = sum of form[k] * v_i * v_j over i <= j."""
     r = quaternion_matrix(grain["quaternion"])
     a = grain["semi_axes"]
-    return [[sum(r[i][k] * r[j][k] / (a[k] * a[k]) for k in range(dims)) for j in range(dims)]
-            for i in range(dims)]
+    q = [[sum(r[i][k] * r[j][k] / (a[k] * a[k]) for k in range(dims)) for j in range(dims)]
+         for i in range(dims)]
+    return tuple(q[i][j] * (1.0 if i == j else 2.0) for i in range(dims) for j in range(i, dims))
+
+
+def squared_scale(form, v):
+    if len(v) == 3:
+        x, y, z = v
+        return (x * (form[0] * x + form[1] * y + form[2] * z)
+                + y * (form[3] * y + form[4] * z) + form[5] * z * z)
+    x, y = v
+    return x * (form[0] * x + form[1] * y) + form[2] * y * y
 
 
 class Grains:
@@ -35,37 +46,39 @@ class Grains:
             shifts = [s + (k,) for s in shifts for k in ((-1, 0, 1) if job["periodic"] else (0,))]
         self.table = {}
         for g in job["grains"]:
-            inv = inverse_form(g, dims)
+            form = inverse_form(g, dims)
             for s in shifts:
                 c = [g["centre"][d] + s[d] * size[d] for d in range(dims)]
                 if any(c[d] < origin[d] - self.cell or c[d] > origin[d] + size[d] + self.cell
                        for d in range(dims)):
                     continue
-                self.table.setdefault(self.key(c), []).append((g, c, inv))
+                self.table.setdefault(self.key(c), []).append((g, c, form))
         self.rings = 1 + max(math.ceil(size[d] / self.cell) for d in range(dims))
+        self.shells = [self.shell(r) for r in range(2)]
 
     def key(self, x):
         return tuple(math.floor((x[d] - self.origin[d]) / self.cell) for d in range(self.dims))
 
-    def block(self, centre, r):
-        """The cells at Chebyshev distance exactly r from `centre`."""
+    def shell(self, r):
+        """The offsets of the cells at Chebyshev distance exactly r."""
         cells = [()]
-        for d in range(self.dims):
-            cells = [c + (centre[d] + k,) for c in cells for k in range(-r, r + 1)]
-        return [c for c in cells if max(abs(c[d] - centre[d]) for d in range(self.dims)) == r]
+        for _ in range(self.dims):
+            cells = [c + (k,) for c in cells for k in range(-r, r + 1)]
+        return [c for c in cells if max(abs(k) for k in c) == r]
 
     def nearest(self, x):
         """The grain of smallest t at x. A grain of centre c has t >= |x - c| / reach,
         and the cells within ring r hold every centre nearer x than r cells: once the
         best t is at most r * cell / reach, no grain further out can beat it."""
         here = self.key(x)
+        dims = self.dims
         best, best_t2 = None, math.inf
         for r in range(self.rings + 1):
-            for k in self.block(here, r):
-                for g, c, inv in self.table.get(k, ()):
-                    v = [x[d] - c[d] for d in range(self.dims)]
-                    t2 = sum(v[i] * inv[i][j] * v[j] for i in range(self.dims)
-                             for j in range(self.dims))
+            offsets = self.shells[r] if r < len(self.shells) else self.shell(r)
+            for o in offsets:
+                k = tuple(here[d] + o[d] for d in range(dims))
+                for g, c, form in self.table.get(k, ()):
+                    t2 = squared_scale(form, [x[d] - c[d] for d in range(dims)])
                     if t2 < best_t2 or (t2 == best_t2 and g["id"] < best["id"]):
                         best, best_t2 = g, t2
             if best is not None and math.sqrt(best_t2) * self.reach <= r * self.cell:
