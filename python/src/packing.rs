@@ -168,15 +168,7 @@ impl PyPacking {
                 "order = {order}: must be 1 (C3D4, CPE3 in 2D) or 2 (C3D10, CPE6 in 2D)"
             )));
         }
-        let fill = match fill {
-            "matrix" => RveFill::Matrix,
-            "grains" => RveFill::Grains,
-            _ => {
-                return Err(PyValueError::new_err(format!(
-                    "fill = {fill:?}: must be \"matrix\" or \"grains\" (as output.mesh_fill)"
-                )))
-            }
-        };
+        let fill = fill_of(fill, "output.mesh_fill")?;
         let gap = self.scene.packing.gap;
         if gap < MIN_MESH_GAP {
             return Err(PyValueError::new_err(format!(
@@ -210,15 +202,7 @@ impl PyPacking {
         cells: Vec<usize>,
         fill: &str,
     ) -> PyResult<Voxels<'py>> {
-        let fill = match fill {
-            "grains" => RveFill::Grains,
-            "matrix" => RveFill::Matrix,
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "fill = {other:?}: must be \"grains\" or \"matrix\""
-                )))
-            }
-        };
+        let fill = fill_of(fill, "output.rve_fill")?;
         let domain = &self.scene.domain;
         let plane = domain.dimension == Dimension::Two;
         let cells = match cells.as_slice() {
@@ -279,5 +263,16 @@ impl PyPacking {
 
     fn __len__(&self) -> usize {
         self.result.packing.grains.len()
+    }
+}
+
+/// `fill` as the scene's `key` takes it.
+fn fill_of(fill: &str, key: &str) -> PyResult<RveFill> {
+    match fill {
+        "grains" => Ok(RveFill::Grains),
+        "matrix" => Ok(RveFill::Matrix),
+        other => Err(PyValueError::new_err(format!(
+            "fill = {other:?}: must be \"grains\" or \"matrix\" (as {key})"
+        ))),
     }
 }
