@@ -3,6 +3,8 @@
 
 #[path = "fuzz_regressions/corrector.rs"]
 mod corrector;
+#[path = "fuzz_regressions/overlap.rs"]
+mod overlap;
 #[path = "fuzz_regressions/robust.rs"]
 mod robust;
 #[path = "fuzz_regressions/scenes.rs"]
