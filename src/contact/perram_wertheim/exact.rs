@@ -185,6 +185,19 @@ fn quadratic_form(s: &[Dd; 6], x: &Vec3) -> Dd {
 /// `[A0, A1, A2]`, `[B0, B1, B2, B3]` of `f = λ(1−λ) a / b` (module docs), each
 /// rounded once from double-double, and 0 where not resolved ([`COEFFICIENT_RESOLUTION`]).
 pub(super) fn coefficients(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4]) {
+    let (a, b) = coefficient_sums(r, q1, q2);
+    (a.map(Dd::resolved), b.map(Dd::resolved))
+}
+
+/// The relative error of each of [`coefficients`] (`∞` for one that is 0): its rounding
+/// to a double, `ε/2`, and its evaluation, [`COEFFICIENT_RESOLUTION`] of its terms.
+pub(super) fn coefficient_errors(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4]) {
+    let error = |d: Dd| 0.5 * f64::EPSILON + COEFFICIENT_RESOLUTION * d.mag / d.resolved().abs();
+    let (a, b) = coefficient_sums(r, q1, q2);
+    (a.map(error), b.map(error))
+}
+
+fn coefficient_sums(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([Dd; 3], [Dd; 4]) {
     let (adj1, adj2) = (adjugate(q1), adjugate(q2));
     let mixed = polarised_adjugate(q1, q2);
     let det = |m: &Sym3, adj: &[Dd; 6]| (0..3).fold(Dd::ZERO, |acc, k| acc.add(adj[k].times(m[k])));
@@ -199,7 +212,7 @@ pub(super) fn coefficients(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4
         frobenius(&adj2, q1),
         det(q2, &adj2),
     ];
-    (a.map(Dd::resolved), b.map(Dd::resolved))
+    (a, b)
 }
 
 /// The rank of a symmetric positive semi-definite `q` whose largest diagonal entry is
