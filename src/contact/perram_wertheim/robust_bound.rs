@@ -24,9 +24,10 @@ use crate::contact::{Sym3, Vec3};
 /// through `C`. Of order `ε` unless a coefficient cancels to far below its terms: a
 /// needle of zero thickness with `r12` within 1e-12 of its line, two nearly equal
 /// needles (measured: 4.7e-9 between the two orders of such a pair, defect 20 of
-/// `docs/reliability.md`). `None` for a pair whose forms factor (its μ² comes from the
-/// common path, to a few ulps, or from this path's coefficients of order `ε`) or that
-/// the robust path refuses.
+/// `docs/reliability.md`). `None` for a pair whose forms factor (the common path's, to a
+/// few ulps; the definite forms that the robust path also takes, beyond
+/// [`FORM_MAX_CONDITION`](crate::contact::FORM_MAX_CONDITION) or near an end, are not
+/// covered: their coefficients may cancel too) or that the robust path refuses.
 ///
 /// The bound is on the robust path's own problem: each form taken as the form of its
 /// rank ([`SINGULAR_PIVOT`](crate::contact::SINGULAR_PIVOT)), whose μ² may differ from
