@@ -132,10 +132,11 @@ impl<'a> Newton<'a> {
     }
 
     /// Evaluates at the current λ, narrows the bracket and moves λ to the next
-    /// iterate. Returns the evaluation and whether the iteration has converged (the
-    /// predicted gain is below [`GAIN_TOL`], or λ can no longer move).
+    /// iterate. Returns the evaluation and where the iteration stands: [`Step::Converged`]
+    /// once the predicted gain is below [`GAIN_TOL`] (or `g = 0`), [`Step::Stuck`] when
+    /// the Newton step rounds back to λ without that.
     #[inline(always)]
-    pub fn step(&mut self) -> Result<(Eval, bool), ContactError> {
+    pub fn step(&mut self) -> Result<(Eval, Step), ContactError> {
         let e = Eval::at(self.lambda, &self.p.r, &self.p.q1, &self.p.q2, &self.q12)?;
         self.iterations += 1;
         if !(e.g.is_finite() && e.gp.is_finite()) {
@@ -148,18 +149,38 @@ impl<'a> Newton<'a> {
         } else if e.g > 0.0 {
             self.hi = e.lambda;
         } else {
-            return Ok((e, true));
+            return Ok((e, Step::Converged));
         }
         let newton = e.lambda - e.g / e.gp;
         let inside = e.gp > 0.0 && newton >= self.lo && newton <= self.hi;
-        let done = (e.gp > 0.0 && e.gain() <= GAIN_TOL * e.f) || newton == e.lambda;
+        let step = if e.gp > 0.0 && e.gain() <= GAIN_TOL * e.f {
+            Step::Converged
+        } else if newton == e.lambda {
+            Step::Stuck
+        } else {
+            Step::Going
+        };
         self.lambda = if inside {
             newton
-        } else if done {
+        } else if step != Step::Going {
             e.lambda
         } else {
             0.5 * (self.lo + self.hi)
         };
-        Ok((e, done))
+        Ok((e, step))
     }
+}
+
+/// Where [`Newton::step`] left the iteration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Step {
+    /// Not finished: evaluate again at the new λ.
+    Going,
+    /// The gain test met: `f + g²/(2g′)` is μ² to [`GAIN_TOL`]'s truncation.
+    Converged,
+    /// The Newton step rounds back to λ but the gain is not small: λ* lies within
+    /// half an ulp of λ where `f` still rises by more than [`GAIN_TOL`] (an end, where
+    /// the doubles near 1 are 2^53 times coarser than near 0), so `f + g²/(2g′)` is no
+    /// estimate of μ² (`docs/reliability.md`, defect 19).
+    Stuck,
 }

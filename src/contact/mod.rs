@@ -46,9 +46,9 @@ pub use method::{Answer, Method, Timing, UnknownMethod};
 pub use overlap::{overlaps, overlaps_prepared, DECISION_SAFETY};
 pub use perram_wertheim::{
     contact_function, contact_function_fast, contact_functions, contact_functions_fast,
-    fast_condition, lambda_bound, CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL, FAST_MAX_CONDITION,
-    FAST_ROUNDING, FAST_TOL, FORM_MAX_CONDITION, GAIN_TOL, HALLEY_FINAL_GAIN, MAX_ITERATIONS,
-    NEAR_END, SINGULAR_PIVOT,
+    fast_condition, lambda_bound, mu2_bound, CORRECTOR_SWITCH_GAIN, CUBIC_TERM_TOL,
+    FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL, FORM_MAX_CONDITION, GAIN_TOL, HALLEY_FINAL_GAIN,
+    MAX_ITERATIONS, NEAR_END, SINGULAR_PIVOT,
 };
 pub use plane::{
     contact_function_2d, contact_function_fast_2d, contact_functions_2d, contact_functions_fast_2d,

@@ -16,7 +16,7 @@
 //! tests leave open. The rest go to a Newton iteration on LDLᵀ factors with the same
 //! two bounds.
 
-use super::direct::{condition_bound, Newton};
+use super::direct::{condition_bound, Newton, Step};
 use super::perram_wertheim::{contact_function, MAX_ITERATIONS};
 use super::prepared::PreparedEllipsoid;
 use super::scale::{needs_no_rescaling, offset_in_safe_range, Prepared};
@@ -241,7 +241,7 @@ fn iterate(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<bool, ContactError> {
     let cond = condition_bound(&p.q1, &p.l1).max(condition_bound(&p.q2, &p.l2));
     let mut newton = Newton::new(&p, a, b);
     while newton.iterations < MAX_ITERATIONS {
-        let (e, done) = newton.step()?;
+        let (e, step) = newton.step()?;
         let (f, upper) = bounds_at(e.lambda, &p.r, &p.q1, &p.q2, &e.ldl);
         let margin = DECISION_SAFETY * f64::EPSILON * e.condition_bound().max(cond);
         if f > 1.0 + margin {
@@ -250,12 +250,17 @@ fn iterate(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<bool, ContactError> {
         if upper < 1.0 - margin {
             return Ok(true);
         }
-        if done {
-            let mu2 = e.f + e.gain();
-            if (mu2 - 1.0).abs() > margin {
-                return Ok(mu2 < 1.0);
+        match step {
+            Step::Going => {}
+            Step::Converged => {
+                let mu2 = e.f + e.gain();
+                if (mu2 - 1.0).abs() > margin {
+                    return Ok(mu2 < 1.0);
+                }
+                return Ok(contact_function(r12, q1, q2)?.mu2 < 1.0);
             }
-            return Ok(contact_function(r12, q1, q2)?.mu2 < 1.0);
+            // No estimate of μ² where λ cannot reach λ*: the accurate method decides.
+            Step::Stuck => return Ok(contact_function(r12, q1, q2)?.mu2 < 1.0),
         }
     }
     Err(ContactError::NotConverged {

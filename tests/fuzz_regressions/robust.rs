@@ -275,3 +275,67 @@ fn lambda_mirrors_where_the_two_halves_maxima_are_an_ulp_apart() {
         "{one:?} {other:?}"
     );
 }
+
+/// fuzz target contact_bits: a needle of zero thickness (`q` of equal entries, along
+/// `(1, 1, 1)`) with `r12` along it, or 12 ulps off it, against a form 1e-300 to 1e-35
+/// of its size. The mixed coefficient of `f` is 0 in real arithmetic (or 7e-35 against
+/// terms of order 10, below what double-double resolves), and came out as rounding:
+/// 3.9e-31 in one order, 0 in the other. Which order `N` and `C` vanish to at an end
+/// followed from it, so the pair answered μ² = 3.79e146 in one order and an overflow in
+/// the other, or 2.3e179 and 1.5e-47; the third pair 1.04e-42 (`contact_exact`:
+/// 1.0410273767909543e-42) and 7.3e-33. A coefficient within `64 ε²` of its terms'
+/// magnitudes is now 0 in either order (`exact::COEFFICIENT_RESOLUTION`).
+#[test]
+fn swapping_a_needle_with_r12_along_it_keeps_mu2_where_a_coefficient_is_rounding() {
+    let needle = |c: f64| [c; 6];
+    let pairs = [
+        (
+            [3.7921287488073793e146; 3],
+            needle(3.7921287488073793e146),
+            [
+                1.2203139442750433e-307,
+                6.2e-322,
+                6.79038682573856e-310,
+                6.89913715756663e-310,
+                1.390671161566996e-309,
+                1.1119936983311136e-308,
+            ],
+            3.7921287488073793e146,
+        ),
+        (
+            [
+                1.5197906138816818e-47,
+                1.519790613881695e-47,
+                1.519790613881695e-47,
+            ],
+            needle(1.519790613881695e-47),
+            [
+                3.5743996522989874e-299,
+                2.0235713373e-314,
+                3.4223564433723e-310,
+                2.4236617003790986e-305,
+                6.03e-322,
+                0.0,
+            ],
+            1.519790613881695e-47,
+        ),
+        (
+            [1.0410273767909543e-42; 3],
+            needle(1.0410273767909543e-42),
+            [
+                1.3980433222694975e-76,
+                1.398043286095289e-76,
+                1.398043286095289e-76,
+                1.398043286095289e-76,
+                1.398043286095289e-76,
+                1.2003205303379468e-71,
+            ],
+            1.0410273767909543e-42,
+        ),
+    ];
+    for (r, q1, q2, mu2) in pairs {
+        let a = contact_function(&r, &q1, &q2).unwrap();
+        let b = contact_function(&r.map(|x| -x), &q2, &q1).unwrap();
+        assert_eq!((a.mu2, b.mu2), (mu2, mu2), "{a:?} {b:?}");
+    }
+}

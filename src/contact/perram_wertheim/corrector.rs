@@ -2,6 +2,7 @@
 //! residual `g = −f′` evaluated by [`refine`](crate::contact::refine), from the
 //! predictor's λ.
 
+use super::robust_bound::robust_lambda_bound;
 use super::GAIN_TOL;
 use super::{refined_ldl, PencilParts, Rational, MAX_ITERATIONS};
 use super::{Contact, ContactError, Prepared, Refined, Refiner, Stop, Sym3, Vec3};
@@ -79,14 +80,19 @@ pub(super) fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64,
         .then(|| (v.f + gain, (t - step - second).clamp(bracket.0, bracket.1)))
 }
 
-/// How far λ of [`contact_function`](super::contact_function) may lie from λ* at a
-/// pair on its common path: `√(2 GAIN_ROUNDING_TOL · f / g′)` at `lambda`, with `f`
-/// and `g′ = −f″` of the refined evaluation; `None` where that evaluation fails or `f`
-/// is not curved there (forms that do not factor, λ at an end: pairs of module
-/// `robust`, whose λ is held by `LOG_Y_STEP` instead). The definite forms beyond
-/// [`FORM_MAX_CONDITION`](crate::contact::FORM_MAX_CONDITION) that module also takes
-/// get a bound, which their λ (measured: within 5e-15 of `tools/contact_exact.py`'s)
-/// meets.
+/// How far λ of [`contact_function`](super::contact_function) may lie from λ*: on its
+/// common path, `√(2 GAIN_ROUNDING_TOL · f / g′)` at `lambda`, with `f` and `g′ = −f″`
+/// of the refined evaluation. The definite forms beyond
+/// [`FORM_MAX_CONDITION`](crate::contact::FORM_MAX_CONDITION) that the robust path
+/// takes get that bound too, which their λ (measured: within 5e-15 of
+/// `tools/contact_exact.py`'s) meets. Where that evaluation fails (forms that do not
+/// factor: the robust path's pairs), the robust path's own bound, `λ(1 − λ) du` with
+/// `du = √(2 FINAL_GAIN / |φ″|) + δψ / |φ″|` in `u = ln(λ̂/(1 − λ̂))` (its stopping test,
+/// and the error `δψ` of its residual `ψ = φ′`, `φ = ln F`, from the resolution of its
+/// coefficients; module `robust_bound`): on the 4 pairs of defect 17 in
+/// `docs/reliability.md`, 5.9e-7 to 0.38, against λ 2e-12 to 1.9e-3 from
+/// `tools/contact_exact.py`'s λ*. `None` at an end (λ = 0 or 1, a limit in closed form)
+/// and where `f` is not curved.
 ///
 /// μ² is stationary in λ, so the corrector needs `g = −f′` only to `δg` with
 /// `δg²/(2g′) ≤ GAIN_ROUNDING_TOL · f` for μ² to be right to `ε/8`
@@ -108,10 +114,13 @@ pub(super) fn finished(v: &Refined, t: f64, bracket: (f64, f64)) -> Option<(f64,
 /// assert!((bound - (2.0 * grainpack::contact::GAIN_ROUNDING_TOL / 8.0).sqrt()).abs() < 1e-15);
 /// ```
 pub fn lambda_bound(r12: &Vec3, q1: &Sym3, q2: &Sym3, lambda: f64) -> Option<f64> {
-    let p = Prepared::new(r12, q1, q2).ok()?;
-    let v = refined_ldl(lambda, &p.r, &p.q1, &p.q2).ok()?;
-    let ratio = v.f / v.gp;
-    (v.gp > 0.0 && ratio.is_finite()).then(|| (2.0 * GAIN_ROUNDING_TOL * ratio).sqrt())
+    let common = || {
+        let p = Prepared::new(r12, q1, q2).ok()?;
+        let v = refined_ldl(lambda, &p.r, &p.q1, &p.q2).ok()?;
+        let ratio = v.f / v.gp;
+        (v.gp > 0.0 && ratio.is_finite()).then(|| (2.0 * GAIN_ROUNDING_TOL * ratio).sqrt())
+    };
+    common().or_else(|| robust_lambda_bound(r12, q1, q2, lambda))
 }
 
 /// Largest relative size of the third-order Taylor term that the corrector's result may

@@ -33,28 +33,50 @@ pub const SINGULAR_PIVOT: f64 = 1.0 / (1u64 << 46) as f64;
 /// pairs are unchanged, bitwise.
 const UNRESOLVED: f64 = f64::EPSILON * f64::EPSILON;
 
-/// A double-double `hi + lo`.
+/// A coefficient within `COEFFICIENT_RESOLUTION = 64 ε²` of the sum of its terms'
+/// magnitudes is 0 to what its evaluation resolves: each of the ten or so double-double
+/// operations on a path to it errs by a few `ε²` of their operands' magnitudes, and the
+/// entries that [`singular_form`] drops (below [`UNRESOLVED`]) move a term of degree 3
+/// in `Q` by `3ε²`. Its sign and size are rounding there, and they decided which order
+/// `N` and `C` vanish to at an end: the same pair answered μ² in one order and an
+/// overflow in the other (a needle of zero thickness with `r12` along it, the mixed
+/// coefficient 3.9e-31 in one order and 0 in the other; defect 20 of
+/// `docs/reliability.md`).
+pub(super) const COEFFICIENT_RESOLUTION: f64 = 64.0 * f64::EPSILON * f64::EPSILON;
+
+/// A double-double `hi + lo`, with `mag`, the sum of the magnitudes of the terms it was
+/// summed from (in doubles: a bound on its own rounding, not a value).
 #[derive(Debug, Clone, Copy)]
 struct Dd {
     hi: f64,
     lo: f64,
+    mag: f64,
 }
 
 impl Dd {
-    const ZERO: Dd = Dd { hi: 0.0, lo: 0.0 };
+    const ZERO: Dd = Dd {
+        hi: 0.0,
+        lo: 0.0,
+        mag: 0.0,
+    };
 
     /// `a · b`, exactly.
     fn prod(a: f64, b: f64) -> Dd {
         let (hi, lo) = two_prod(a, b);
-        Dd { hi, lo }
+        Dd {
+            hi,
+            lo,
+            mag: hi.abs(),
+        }
     }
 
     /// `hi + lo` renormalised (`|lo| ≤ ulp(hi)/2`).
-    fn norm(hi: f64, lo: f64) -> Dd {
+    fn norm(hi: f64, lo: f64, mag: f64) -> Dd {
         let s = hi + lo;
         Dd {
             hi: s,
             lo: lo - (s - hi),
+            mag,
         }
     }
 
@@ -62,28 +84,39 @@ impl Dd {
         let s = self.hi + o.hi;
         let bb = s - self.hi;
         let e = (self.hi - (s - bb)) + (o.hi - bb);
-        Dd::norm(s, e + self.lo + o.lo)
+        Dd::norm(s, e + self.lo + o.lo, self.mag + o.mag)
     }
 
     fn sub(self, o: Dd) -> Dd {
         self.add(Dd {
             hi: -o.hi,
             lo: -o.lo,
+            mag: o.mag,
         })
     }
 
     fn mul(self, o: Dd) -> Dd {
         let (p, e) = two_prod(self.hi, o.hi);
-        Dd::norm(p, e + (self.hi * o.lo + self.lo * o.hi))
+        Dd::norm(p, e + (self.hi * o.lo + self.lo * o.hi), self.mag * o.mag)
     }
 
     fn times(self, x: f64) -> Dd {
         let (p, e) = two_prod(self.hi, x);
-        Dd::norm(p, e + self.lo * x)
+        Dd::norm(p, e + self.lo * x, self.mag * x.abs())
     }
 
     fn value(self) -> f64 {
         self.hi + self.lo
+    }
+
+    /// [`Dd::value`], or 0 where that is within [`COEFFICIENT_RESOLUTION`] of `mag`.
+    fn resolved(self) -> f64 {
+        let v = self.value();
+        if v.abs() <= COEFFICIENT_RESOLUTION * self.mag {
+            0.0
+        } else {
+            v
+        }
     }
 }
 
@@ -150,8 +183,21 @@ fn quadratic_form(s: &[Dd; 6], x: &Vec3) -> Dd {
 }
 
 /// `[A0, A1, A2]`, `[B0, B1, B2, B3]` of `f = λ(1−λ) a / b` (module docs), each
-/// rounded once from double-double.
+/// rounded once from double-double, and 0 where not resolved ([`COEFFICIENT_RESOLUTION`]).
 pub(super) fn coefficients(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4]) {
+    let (a, b) = coefficient_sums(r, q1, q2);
+    (a.map(Dd::resolved), b.map(Dd::resolved))
+}
+
+/// The relative error of each of [`coefficients`] (`∞` for one that is 0): its rounding
+/// to a double, `ε/2`, and its evaluation, [`COEFFICIENT_RESOLUTION`] of its terms.
+pub(super) fn coefficient_errors(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4]) {
+    let error = |d: Dd| 0.5 * f64::EPSILON + COEFFICIENT_RESOLUTION * d.mag / d.resolved().abs();
+    let (a, b) = coefficient_sums(r, q1, q2);
+    (a.map(error), b.map(error))
+}
+
+fn coefficient_sums(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([Dd; 3], [Dd; 4]) {
     let (adj1, adj2) = (adjugate(q1), adjugate(q2));
     let mixed = polarised_adjugate(q1, q2);
     let det = |m: &Sym3, adj: &[Dd; 6]| (0..3).fold(Dd::ZERO, |acc, k| acc.add(adj[k].times(m[k])));
@@ -166,7 +212,7 @@ pub(super) fn coefficients(r: &Vec3, q1: &Sym3, q2: &Sym3) -> ([f64; 3], [f64; 4
         frobenius(&adj2, q1),
         det(q2, &adj2),
     ];
-    (a.map(Dd::value), b.map(Dd::value))
+    (a, b)
 }
 
 /// The rank of a symmetric positive semi-definite `q` whose largest diagonal entry is

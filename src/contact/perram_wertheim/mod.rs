@@ -360,6 +360,7 @@ mod corrector;
 mod ends;
 mod exact;
 mod robust;
+mod robust_bound;
 #[cfg(test)]
 mod robust_tests;
 #[cfg(test)]
@@ -375,6 +376,7 @@ pub use corrector::{lambda_bound, CUBIC_TERM_TOL};
 pub(crate) use exact::rank;
 pub use exact::SINGULAR_PIVOT;
 use robust::{solve_robust, solve_with_complement};
+pub use robust_bound::mu2_bound;
 
 /// λ* and `1 − λ*`, each to its own relative precision, by the path for sizes far
 /// apart (module `robust`), for finite input: the contact geometry of a pair whose λ*

@@ -60,7 +60,7 @@ pub const NEAR_END: f64 = 1.0 / (1u64 << 24) as f64;
 /// purpose: the model in `u` holds over steps of order 1 only, so a gain of
 /// `GAIN_TOL` may leave ~1e-14 (measured on the size ratios up to 1e150), and this
 /// path is cold.
-const FINAL_GAIN: f64 = f64::EPSILON / 8.0;
+pub(super) const FINAL_GAIN: f64 = f64::EPSILON / 8.0;
 
 /// Once `F` is settled, Newton goes on until its step in `u = ln y` is at most
 /// `LOG_Y_STEP · (1 + |u|)`: λ* to about that relative precision. Where the sizes are
@@ -149,7 +149,10 @@ pub(super) fn solve_with_complement(
 /// `(log2 σ, Q/σ)` with `σ` the power of two that brings the largest diagonal entry
 /// into `[1, 2)`; `None` for `Q = 0`. An error if a diagonal entry is negative, or all
 /// are zero and another entry is not.
-fn normalised(q: &Sym3, what: &'static str) -> Result<(Option<i32>, Sym3), ContactError> {
+pub(super) fn normalised(
+    q: &Sym3,
+    what: &'static str,
+) -> Result<(Option<i32>, Sym3), ContactError> {
     let largest = q[0].max(q[3]).max(q[5]);
     if q[0] < 0.0 || q[3] < 0.0 || q[5] < 0.0 || (largest == 0.0 && q.iter().any(|&x| x != 0.0)) {
         return Err(indefinite(q, what));
@@ -173,7 +176,11 @@ fn indefinite(q: &Sym3, what: &'static str) -> ContactError {
 
 /// The coefficients with those that vanish for forms of ranks `k1`, `k2` set to 0,
 /// and rounding below 0 (a singular direction written in doubles) clamped to 0.
-fn vanishing((a, b): ([f64; 3], [f64; 4]), k1: usize, k2: usize) -> ([f64; 3], [f64; 4]) {
+pub(super) fn vanishing(
+    (a, b): ([f64; 3], [f64; 4]),
+    k1: usize,
+    k2: usize,
+) -> ([f64; 3], [f64; 4]) {
     let (mut a, mut b) = (a.map(|x| x.max(0.0)), b.map(|x| x.max(0.0)));
     // Rank < 3: det = 0; rank < 2: adj = 0 too; rank 0: Q = 0.
     for (k, det, adj_b, adj_a, zero_b) in [(k1, 0, 1, 0, 2), (k2, 3, 2, 2, 1)] {
@@ -272,7 +279,7 @@ fn maximise(n: &[f64; 5], c: &[f64; 5], odds: f64) -> Result<Maximum, ContactErr
 /// `(i − j) N_i C_j` adds at most `12ε` of their magnitudes. Taking the sign of a
 /// rounding-level `ψ(½)` made μ² depend on the order of the pair, by 4.5e-12 (the pair
 /// of defect 12 in `docs/reliability.md`).
-const SLOPE_TOL: f64 = 16.0 * f64::EPSILON;
+pub(super) const SLOPE_TOL: f64 = 16.0 * f64::EPSILON;
 
 /// Two maxima of `F`, one from each half, within `F_TIE_TOL = 4ε` of each other are the
 /// same value to the rounding of `F` (a sum of positive terms: a few ulps), and their
@@ -323,7 +330,7 @@ fn moments(p: &[f64; 5], y: f64) -> ([f64; 5], f64, f64) {
 /// `Σ (i − j) wN_i wC_j / (ΣwN ΣwC)`, whose terms are as large as the cancellation
 /// at the root makes necessary (each `E` is an index plus a part that may be far below
 /// an ulp of it).
-fn psi(n: &[f64; 5], c: &[f64; 5], y: f64) -> (f64, f64) {
+pub(super) fn psi(n: &[f64; 5], c: &[f64; 5], y: f64) -> (f64, f64) {
     let (wn, sn, vn) = moments(n, y);
     let (wc, sc, vc) = moments(c, y);
     let mut cross = 0.0;
