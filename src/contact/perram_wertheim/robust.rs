@@ -114,16 +114,8 @@ pub(super) fn solve_with_complement(
     // A zero form has no size of its own: it takes the other's.
     let (e1, e2) = (e1.or(e2).unwrap_or(0), e2.or(e1).unwrap_or(0));
     let (a, b) = vanishing(coefficients(&r, &q1, &q2), k1, k2);
+    let (w1, w2, n, c) = weighted(&a, &b, e1, e2);
     let em = e1.max(e2);
-    let (w1, w2) = (ldexp(1.0, e2 - em), ldexp(1.0, e1 - em));
-    let n = [0.0, a[0], a[1], a[2], 0.0];
-    let c = [
-        w1 * b[0],
-        w1 * b[1] + w2 * b[0],
-        w1 * b[2] + w2 * b[1],
-        w1 * b[3] + w2 * b[2],
-        w2 * b[3],
-    ];
     // Where the maximiser for two spheres, λ₀ = √b / (√a + √b) with a = A0/B0 and
     // b = A2/B3 in the original sizes, maps to: t̂/ŝ = √(A2 B0 w1 / (A0 B3 w2)).
     let odds = (a[2] / a[0]).sqrt() * (b[0] / b[3]).sqrt() * (w1.sqrt() / w2.sqrt());
@@ -166,6 +158,27 @@ pub(super) fn normalised(
 
 /// The error for an indefinite form, with the first pivot of its LDLᵀ factorisation
 /// (in the given order) that is not positive enough.
+/// The weights of the two forms' sizes `e1`, `e2` (powers of two, the larger 1) and
+/// the numerator and denominator of `ψ` in `y` from the coefficients `a`, `b`.
+pub(super) fn weighted(
+    a: &[f64; 3],
+    b: &[f64; 4],
+    e1: i32,
+    e2: i32,
+) -> (f64, f64, [f64; 5], [f64; 5]) {
+    let em = e1.max(e2);
+    let (w1, w2) = (ldexp(1.0, e2 - em), ldexp(1.0, e1 - em));
+    let n = [0.0, a[0], a[1], a[2], 0.0];
+    let c = [
+        w1 * b[0],
+        w1 * b[1] + w2 * b[0],
+        w1 * b[2] + w2 * b[1],
+        w1 * b[3] + w2 * b[2],
+        w2 * b[3],
+    ];
+    (w1, w2, n, c)
+}
+
 fn indefinite(q: &Sym3, what: &'static str) -> ContactError {
     let (pivot, value) = match Ldl::factor(q) {
         Err(bad) => bad,

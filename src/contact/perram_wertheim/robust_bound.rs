@@ -13,7 +13,7 @@
 //! constant, so `dλ = λ(1 − λ) du`.
 
 use super::exact::{coefficient_errors, coefficients, singular_form};
-use super::robust::{normalised, psi, vanishing, FINAL_GAIN, SLOPE_TOL};
+use super::robust::{normalised, psi, vanishing, weighted, FINAL_GAIN, SLOPE_TOL};
 use crate::contact::scale::{exponent, ldexp, Prepared};
 use crate::contact::{Sym3, Vec3};
 
@@ -84,16 +84,7 @@ fn pencil(r: &Vec3, q1: &Sym3, q2: &Sym3) -> Option<Pencil> {
         .chain(b.iter().zip(&db))
         .filter(|(x, _)| **x > 0.0)
         .fold(0.0f64, |m, (_, e)| m.max(*e));
-    let em = e1.max(e2);
-    let (w1, w2) = (ldexp(1.0, e2 - em), ldexp(1.0, e1 - em));
-    let n = [0.0, a[0], a[1], a[2], 0.0];
-    let c = [
-        w1 * b[0],
-        w1 * b[1] + w2 * b[0],
-        w1 * b[2] + w2 * b[1],
-        w1 * b[3] + w2 * b[2],
-        w2 * b[3],
-    ];
+    let (w1, w2, n, c) = weighted(&a, &b, e1, e2);
     Some(Pencil { n, c, rho, w1, w2 })
 }
 
