@@ -361,6 +361,7 @@ mod ends;
 mod exact;
 mod robust;
 mod robust_bound;
+mod robust_root;
 #[cfg(test)]
 mod robust_tests;
 #[cfg(test)]

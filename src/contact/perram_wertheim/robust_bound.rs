@@ -13,7 +13,8 @@
 //! constant, so `dλ = λ(1 − λ) du`.
 
 use super::exact::{coefficient_errors, coefficients, singular_form};
-use super::robust::{normalised, psi, vanishing, weighted, FINAL_GAIN, SLOPE_TOL};
+use super::robust::{normalised, vanishing, weighted, FINAL_GAIN, SLOPE_TOL};
+use super::robust_root::psi;
 use crate::contact::scale::{exponent, ldexp, Prepared};
 use crate::contact::{Sym3, Vec3};
 

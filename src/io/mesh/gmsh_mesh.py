@@ -105,8 +105,8 @@ def generate(gmsh, job, origin, volumes):
     """Meshes in 3D. When gmsh fails (HXT refusing a surface mesh with invalid
     triangles, a periodic curve meshed differently on its two sides), once more in a
     new gmsh session on the geometry rebuilt, with sizes from curvature (in the same
-    session, after a failure, gmsh's mesh.clear() and a second generate, or a new
-    model, gave no elements). Returns (volumes, the first attempt's error if the
+    session, some of gmsh's errors leave it locked: every later generate does nothing;
+    mesh_surface.py). Returns (volumes, the first attempt's error if the
     second was needed, the second's geometry seconds, the surface repairs of the
     attempt kept). A failure of both names gmsh's messages and the
     surfaces its log blames (`where`)."""
