@@ -54,14 +54,6 @@ use crate::contact::{Contact, ContactError, Stop, Sym3, Vec3};
 /// sides of the threshold.
 pub const NEAR_END: f64 = 1.0 / (1u64 << 24) as f64;
 
-/// The search stops where the gain its quadratic model predicts in `u = ln y` is at
-/// most `FINAL_GAIN = ε/8` relative (after taking that last step), or the step is at
-/// the rounding of `u`. Tighter than the predictor's [`GAIN_TOL`](super::GAIN_TOL) on
-/// purpose: the model in `u` holds over steps of order 1 only, so a gain of
-/// `GAIN_TOL` may leave ~1e-14 (measured on the size ratios up to 1e150), and this
-/// path is cold.
-pub(super) const FINAL_GAIN: f64 = f64::EPSILON / 8.0;
-
 /// [`contact_function`](super::contact_function) of `(r, q1, q2)` (finite; `q1`, `q2`
 /// not known to be definite) by the module's method; `mu2_exp` as in
 /// [`Prepared`](crate::contact::scale::Prepared).

@@ -13,8 +13,8 @@
 //! constant, so `dλ = λ(1 − λ) du`.
 
 use super::exact::{coefficient_errors, coefficients, singular_form};
-use super::robust::{normalised, vanishing, weighted, FINAL_GAIN, SLOPE_TOL};
-use super::robust_root::psi;
+use super::robust::{normalised, vanishing, weighted, SLOPE_TOL};
+use super::robust_root::{psi, FINAL_GAIN};
 use crate::contact::scale::{exponent, ldexp, Prepared};
 use crate::contact::{Sym3, Vec3};
 

@@ -2,9 +2,16 @@
 //! `F = N/C` and `ψ = dφ/du` in `y = λ̂/(1−λ̂) ≤ 1`, and the root of ψ by Newton's
 //! method in `u = ln y` with a bisection.
 
-use super::robust::FINAL_GAIN;
 use super::MAX_ITERATIONS;
 use crate::contact::Stop;
+
+/// The search stops where the gain its quadratic model predicts in `u = ln y` is at
+/// most `FINAL_GAIN = ε/8` relative (after taking that last step), or the step is at
+/// the rounding of `u`. Tighter than the predictor's [`GAIN_TOL`](super::GAIN_TOL) on
+/// purpose: the model in `u` holds over steps of order 1 only, so a gain of
+/// `GAIN_TOL` may leave ~1e-14 (measured on the size ratios up to 1e150), and this
+/// path is cold.
+pub(super) const FINAL_GAIN: f64 = f64::EPSILON / 8.0;
 
 /// Once `F` is settled, Newton goes on until its step in `u = ln y` is at most
 /// `LOG_Y_STEP · (1 + |u|)`: λ* to about that relative precision. Where the sizes are
@@ -18,8 +25,8 @@ const SMALLEST_Y: f64 = f64::MIN_POSITIVE;
 
 /// The terms `p_k y^{k−l}` (`l` the first index with `p_l > 0`) at `y = x/(1−x)`,
 /// their sum, and the variance `Var_p` of the index they weigh: the sums of
-/// [`robust`](super::robust)'s module docs divided by `(1−x)^4 y^l`, so that they neither overflow nor underflow to 0 for
-/// `y ≤ 1`.
+/// [`robust`](super::robust)'s module docs divided by `(1−x)^4 y^l`, so that they
+/// neither overflow nor underflow to 0 for `y ≤ 1`.
 pub(super) fn moments(p: &[f64; 5], y: f64) -> ([f64; 5], f64, f64) {
     let l = p.iter().position(|&x| x > 0.0).unwrap_or(4);
     let mut w = [0.0; 5];
