@@ -6,7 +6,7 @@ use super::ldl::Ldl;
 use super::perram_wertheim::{contact_function_fast_factored, lambda_and_complement, rank};
 use super::prepared::PreparedEllipsoid;
 use super::scale::{exponent, pow2};
-use super::sym::{adjugate, dot, frobenius, polarised_adjugate, sym_mul};
+use super::sym::{adjugate, det, dot, frobenius, polarised_adjugate, sym_mul};
 use super::{contact_function, contact_function_fast, Contact, ContactError, Sym3, Vec3, NEAR_END};
 
 /// Contact geometry of a pair, for collision response.
@@ -65,12 +65,67 @@ pub fn contact_geometry_fast_prepared(
     e1: &PreparedEllipsoid,
     e2: &PreparedEllipsoid,
 ) -> Result<ContactGeometry, ContactError> {
+    geometry_from(contact_fast_prepared(r12, e1, e2)?, r12, e1.q(), e2.q())
+}
+
+/// The contact function of [`contact_geometry_fast_prepared`], for a caller that wants
+/// the geometry only for some answers (the packing's, of overlapping pairs: see
+/// [`response_geometry`]).
+#[inline]
+pub(crate) fn contact_fast_prepared(
+    r12: &Vec3,
+    e1: &PreparedEllipsoid,
+    e2: &PreparedEllipsoid,
+) -> Result<Contact, ContactError> {
     let (q1, q2) = (e1.q(), e2.q());
-    let c = if e1.unscaled & e2.unscaled {
-        contact_function_fast_factored(r12, q1, q2, (&e1.ldl, &e2.ldl))?
+    if e1.unscaled & e2.unscaled {
+        contact_function_fast_factored(r12, q1, q2, (&e1.ldl, &e2.ldl))
     } else {
-        contact_function_fast(r12, q1, q2)?
-    };
+        contact_function_fast(r12, q1, q2)
+    }
+}
+
+/// The geometry of a pair from its [`contact_fast_prepared`] answer `c`, for collision
+/// response: [`contact_geometry_fast_prepared`]'s quantities, the normal and the point
+/// from `v = adj Q(λ) r12 = det Q(λ) · Q(λ)⁻¹ r12` instead of a factorisation of
+/// `Q(λ)`. Each entry of the adjugate is a 2×2 minor, so `v` errs by about `ε κ(Q(λ))`
+/// relative, and `κ(Q(λ))` is at most the `κ` under [`FAST_MAX_CONDITION`] of a pair
+/// the fast path answers itself: the normal to about 1e-9, far below what a force or a
+/// torque needs (μ² is `c`'s, untouched). A pair whose λ is within [`NEAR_END`] of an
+/// end, of forms that needed rescaling, or where `det Q(λ)` or `|v|` leave the range
+/// this needs, gets [`geometry_from`]'s answer.
+///
+/// [`FAST_MAX_CONDITION`]: super::FAST_MAX_CONDITION
+#[inline]
+pub(crate) fn response_geometry(
+    c: Contact,
+    r12: &Vec3,
+    e1: &PreparedEllipsoid,
+    e2: &PreparedEllipsoid,
+) -> Result<ContactGeometry, ContactError> {
+    let (q1, q2) = (e1.q(), e2.q());
+    let (lambda, m) = (c.lambda, 1.0 - c.lambda);
+    if (NEAR_END..=1.0 - NEAR_END).contains(&lambda) & e1.unscaled & e2.unscaled {
+        let q: Sym3 = std::array::from_fn(|k| m * q1[k] + lambda * q2[k]);
+        let adj = adjugate(&q);
+        let det = det(&q, &adj);
+        let v = sym_mul(&adj, r12);
+        let norm = dot(&v, &v).sqrt();
+        if det > 0.0 && norm.is_finite() && norm >= NORM_IN_RANGE {
+            let normal = v.map(|x| x / norm);
+            let point = sym_mul(q1, &v).map(|x| x * (m / det));
+            let gap = (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal);
+            if gap.is_finite() && point.iter().all(|x| x.is_finite()) {
+                return Ok(ContactGeometry {
+                    mu2: c.mu2,
+                    lambda,
+                    point,
+                    normal,
+                    gap,
+                });
+            }
+        }
+    }
     geometry_from(c, r12, q1, q2)
 }
 
@@ -182,4 +237,47 @@ fn limit_at_start(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Option<Vec3> {
         _ => return None,
     };
     v.iter().all(|x| x.is_finite()).then_some(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::test_pairs::random_pairs;
+
+    /// `response_geometry`'s vectors against a factorisation's, relative to their size,
+    /// in units of `ε κ`: the adjugate's minors and the factors each round to a few `ε κ`.
+    const ADJUGATE_ROUNDING: f64 = 64.0;
+
+    #[test]
+    fn the_response_geometry_agrees_with_the_factored_one_to_the_conditioning() {
+        let mut checked = 0;
+        for ((r, q1, q2), kappa) in random_pairs(29, 4000) {
+            let (e1, e2) = (
+                PreparedEllipsoid::from_quadratic_form(&q1).unwrap(),
+                PreparedEllipsoid::from_quadratic_form(&q2).unwrap(),
+            );
+            let Ok(c) = contact_fast_prepared(&r, &e1, &e2) else {
+                continue;
+            };
+            let (fast, exact) = (
+                response_geometry(c, &r, &e1, &e2).unwrap(),
+                geometry_from(c, &r, &q1, &q2).unwrap(),
+            );
+            let tol = ADJUGATE_ROUNDING * f64::EPSILON * kappa;
+            let off = |a: &Vec3, b: &Vec3| {
+                let d: Vec3 = std::array::from_fn(|k| a[k] - b[k]);
+                dot(&d, &d).sqrt()
+            };
+            assert_eq!((fast.mu2, fast.lambda), (exact.mu2, exact.lambda));
+            assert!(
+                off(&fast.normal, &exact.normal) <= tol,
+                "{r:?} {q1:?} {q2:?}"
+            );
+            let size = dot(&r, &r).sqrt();
+            assert!(off(&fast.point, &exact.point) <= tol * size, "{r:?}");
+            assert!((fast.gap - exact.gap).abs() <= tol * size, "{r:?}");
+            checked += 1;
+        }
+        assert!(checked > 3900, "{checked}");
+    }
 }

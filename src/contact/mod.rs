@@ -38,6 +38,7 @@ pub use ellipsoid::{
     QUATERNION_NORM_TOL,
 };
 pub use error::ContactError;
+pub(crate) use geometry::{contact_fast_prepared, response_geometry};
 pub use geometry::{
     contact_geometry, contact_geometry_fast, contact_geometry_fast_prepared, ContactGeometry,
 };

@@ -1,6 +1,8 @@
 //! One candidate pair: its contact factor, and the force and torques of its overlap.
 
-use crate::contact::{contact_geometry_fast_prepared, dot, ContactGeometry, PreparedEllipsoid};
+use crate::contact::{
+    contact_fast_prepared, dot, response_geometry, ContactGeometry, PreparedEllipsoid,
+};
 use crate::octree::Pair;
 
 /// What one overlapping pair contributes.
@@ -25,10 +27,16 @@ pub(super) fn pair_force(
 ) -> (f64, Option<PairForce>) {
     let reach = big_s * (ei.inscribed_radius() + ej.inscribed_radius());
     let w = reach * reach;
+    // The geometry only for a pair that overlaps: most of the others are tested to
+    // renew their allowance, which needs μ alone.
     let g = if let Some((ri, rj)) = radii {
         sphere_geometry(r, ri, rj)
     } else {
-        contact_geometry_fast_prepared(r, ei, ej).ok()
+        match contact_fast_prepared(r, ei, ej) {
+            Ok(c) if c.mu2.is_finite() && c.mu2.sqrt() >= big_s => return (c.mu2.sqrt(), None),
+            Ok(c) => response_geometry(c, r, ei, ej).ok(),
+            Err(_) => None,
+        }
     };
     let Some(g) = g.filter(|g| g.mu2.is_finite()) else {
         // Coincident centres (or a pair the contact function cannot handle, which
