@@ -221,15 +221,15 @@ impl Forces {
 
     /// Adds each grain's move (and sweep, when grains turn) since the last evaluation.
     fn advance(&mut self, state: &State, torques: bool) {
-        for ((t, a), b) in self
-            .travel
-            .iter_mut()
+        (self.travel.par_iter_mut())
             .zip(&mut self.last)
             .zip(&state.centres)
-        {
-            *t += ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-            *a = *b;
-        }
+            .with_min_len(GRAINS_PER_TASK)
+            .for_each(|((t, a), b)| {
+                *t +=
+                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+                *a = *b;
+            });
         if torques {
             for (((h, a), b), e) in (self.sweep.iter_mut())
                 .zip(&mut self.last_turn)
@@ -298,6 +298,9 @@ fn round_down(x: f64) -> f32 {
 /// Pairs evaluated before their forces are added up: bounds the memory of the
 /// overlapping pairs' contributions (about 100 bytes each) whatever the scene's size.
 const CHUNK: usize = 1 << 18;
+
+/// Grains one rayon task advances: a few arithmetic operations each.
+const GRAINS_PER_TASK: usize = 8192;
 
 /// Pairs one rayon task takes: one pair is a single contact-function call, too little
 /// work to be worth a task of its own.
