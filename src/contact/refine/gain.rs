@@ -44,8 +44,9 @@ impl<T: Arith> Terms<'_, T> {
     /// with every term in units of `f` (`E/f²`, `T/f²`, `g/f`), so that no side
     /// leaves the double range whatever the pair's scale. (Multiplied through by
     /// `β num` instead, to spare the two divisions, the second test is of degree 5 in
-    /// μ²'s scale: it underflowed to `0 ≤ 0` for μ² of 1e-110 and overflowed for 1e125,
-    /// pairs the common path takes as they are, and passed a `g` 0.4 % off as trusted:
+    /// μ²'s scale: for μ² of 1e-110 it underflowed to `0 ≤ 0` (and left the range
+    /// upwards at 1e121), pairs the common path takes as they are (`r12` and the forms
+    /// within `2^±200`), and passed a `g` 0.4 % off as trusted:
     /// μ² of such pairs missed its symmetries by up to 1.7e-13, defect 18 of
     /// `docs/reliability.md`. The checks run only on pairs whose `κ` is above
     /// [`FAST_MAX_CONDITION`](crate::contact::FAST_MAX_CONDITION).)
