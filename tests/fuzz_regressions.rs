@@ -9,5 +9,7 @@ mod corrector;
 mod overlap;
 #[path = "fuzz_regressions/robust.rs"]
 mod robust;
+#[path = "fuzz_regressions/scale.rs"]
+mod scale;
 #[path = "fuzz_regressions/scenes.rs"]
 mod scenes;

@@ -219,3 +219,51 @@ fn mu2_of_the_robust_path_is_within_its_documented_bound_where_a_coefficient_can
         }
     }
 }
+
+/// fuzz target `contact_bits` (`crash-b615f946`, open defect 18 of the seventh round):
+/// two nearly equal needles along `(1, 1, 1)` of `κ(Q)` 2.7e11 and 1.6e12, beyond
+/// `FORM_MAX_CONDITION`, so the robust path answers, whose coefficients cancel to 5e-8
+/// of their terms: μ² of the two orders 2.9e-14 apart (3.4562907665411278e305 and
+/// ...412264e305; `tools/contact_exact.py`: 3.4562907665411286e305). `mu2_bound` had
+/// nothing to say about definite forms the robust path takes; it now bounds every pair
+/// that path answers (here 9.3e-8).
+#[test]
+fn mu2_of_two_nearly_equal_needles_beyond_the_form_condition_limit_is_within_its_documented_bound()
+{
+    let r = [
+        1.3824170279805095e306,
+        1.3824172084878715e306,
+        1.3824172097958654e306,
+    ];
+    let q1 = [
+        1.3824172084878765e306,
+        1.3824172084878715e306,
+        1.382417208482785e306,
+        1.3824172097958654e306,
+        1.3824172084878765e306,
+        1.3824172084878715e306,
+    ];
+    let q2 = [
+        1.3824172084878715e306,
+        1.3824172084869934e306,
+        1.3824172084878715e306,
+        1.3824172084878715e306,
+        1.3824172084878715e306,
+        1.3824172097958654e306,
+    ];
+    let exact = 3.4562907665411286e305;
+    let m = r.map(|x| -x);
+    let (a, b) = (
+        contact_function(&r, &q1, &q2).unwrap(),
+        contact_function(&m, &q2, &q1).unwrap(),
+    );
+    let ba = mu2_bound(&r, &q1, &q2).expect("a bound on the robust path");
+    let bb = mu2_bound(&m, &q2, &q1).expect("a bound on the robust path");
+    let ulps = 16.0 * f64::EPSILON;
+    assert!(
+        (a.mu2 - b.mu2).abs() <= (ulps + ba + bb) * a.mu2,
+        "{a:?} {b:?}"
+    );
+    assert!((a.mu2 - exact).abs() <= (ulps + ba) * exact, "{a:?} {ba:e}");
+    assert!((b.mu2 - exact).abs() <= (ulps + bb) * exact, "{b:?} {bb:e}");
+}

@@ -68,17 +68,18 @@ pub const FAST_MAX_CONDITION: f64 = FAST_TOL / (2.0 * FAST_ROUNDING * f64::EPSIL
 /// robust one's (itself within 1.6 ε of `tools/contact_exact.py`): at most 3.9 ε below
 /// `κ = 1e9`, 14 ε below 1e10, 228 ε (λ 2e-9 off) near `1/MIN_RELATIVE_PIVOT`, where
 /// the fuzz target `contact_bits_2d` found μ² of a pair and of its swap 2.9e-12 apart
-/// (defect 16 of `docs/reliability.md`). Below the limit that measurement is not a
-/// bound: the fuzz targets have since found forms of `κ(Q)` 1e6 to 1.2e8 whose λ* lies
-/// within 3e-5 of an end, or with `r12` of 1e61, answered up to 1.7e-13 off (open
-/// defect 18 there). `κ` of the reference sets' forms is at most 6.3e7 (aspect ratios
-/// to 1e4), so none of them changes path; the robust path takes about 1.6 µs per pair
+/// (defect 16 of `docs/reliability.md`). The fuzz targets have since found forms of
+/// `κ(Q)` 1e6 to 1.2e8, below the limit, answered up to 1.7e-13 off (defect 18 there):
+/// not their conditioning but the corrector's checks of `g`, which underflowed where
+/// μ² is far from unit scale (module `refine::gain`); fixed, they are within an ulp.
+/// `κ` of the reference sets' forms is at most 6.3e7 (aspect ratios to 1e4), so none
+/// of them changes path; the robust path takes about 1.6 µs per pair
 /// against the common path's 0.6 µs on such forms.
 pub const FORM_MAX_CONDITION: f64 = (1u64 << 27) as f64;
 
 use crate::contact::scale::Prepared;
 use crate::contact::sym::{larger, Arith, PencilParts};
-use crate::contact::{ContactError, Sym3, Vec3};
+use crate::contact::{ContactError, Sym3, Vec3, NEAR_END};
 
 /// The seven coefficients' sizes that [`κ`](self) compares, as five pairs
 /// `(X̃_k, X_k)`: both ends (`κ(Q1)`, `κ(Q2)` as `Σ Q_ii (adj Q)_ii` against `det Q`),
@@ -142,6 +143,29 @@ pub(crate) fn well_conditioned(sizes: &[(f64, f64); 5]) -> bool {
 pub(crate) fn forms_resolved(sizes: &[(f64, f64); 5]) -> bool {
     let [(end1, det1), (end2, det2), ..] = *sizes;
     end1 <= FORM_MAX_CONDITION * det1 && end2 <= FORM_MAX_CONDITION * det2
+}
+
+/// Whether [`contact_function`](super::contact_function) answers the pair by the robust
+/// path (module `robust`), as `solve_in` decides: forms that do not factor or cannot be
+/// rescaled together, a maximiser for two spheres within [`NEAR_END`] of an end, or `κ`
+/// above [`FAST_MAX_CONDITION`] with a form beyond [`FORM_MAX_CONDITION`]. For
+/// [`mu2_bound`](crate::contact::mu2_bound), which bounds that path's answers.
+pub(crate) fn robust_answers(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> bool {
+    let p = match Prepared::new(r12, q1, q2) {
+        Ok(p) => p,
+        Err(e) => {
+            return matches!(
+                e,
+                ContactError::NotPositiveDefinite { .. } | ContactError::Overflow { .. }
+            )
+        }
+    };
+    if p.r == [0.0; 3] {
+        return false;
+    }
+    let (parts, (a, b), t0) = super::pieces(&p);
+    let all = sizes(&p.r, &p.q1, &p.q2, &parts, &a, &b);
+    !(NEAR_END..=1.0 - NEAR_END).contains(&t0) || !(well_conditioned(&all) || forms_resolved(&all))
 }
 
 /// The condition number `κ` (module docs) that decides whether

@@ -371,7 +371,7 @@ pub use batch::{contact_functions, contact_functions_fast};
 pub use condition::{
     fast_condition, FAST_MAX_CONDITION, FAST_ROUNDING, FAST_TOL, FORM_MAX_CONDITION,
 };
-use condition::{forms_resolved, sizes, well_conditioned};
+use condition::{forms_resolved, robust_answers, sizes, well_conditioned};
 use corrector::{correct, correct_checking, correct_further, finished};
 pub use corrector::{lambda_bound, CUBIC_TERM_TOL};
 pub(crate) use exact::rank;

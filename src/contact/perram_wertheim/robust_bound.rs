@@ -14,8 +14,9 @@
 
 use super::exact::{coefficient_errors, coefficients, singular_form};
 use super::robust::{normalised, vanishing, weighted, SLOPE_TOL};
+use super::robust_answers;
 use super::robust_root::{psi, FINAL_GAIN};
-use crate::contact::scale::{exponent, ldexp, Prepared};
+use crate::contact::scale::{exponent, ldexp};
 use crate::contact::{Sym3, Vec3};
 
 /// The relative error of μ² that [`contact_function`](crate::contact::contact_function)
@@ -25,10 +26,12 @@ use crate::contact::{Sym3, Vec3};
 /// through `C`. Of order `ε` unless a coefficient cancels to far below its terms: a
 /// needle of zero thickness with `r12` within 1e-12 of its line, two nearly equal
 /// needles (measured: 4.7e-9 between the two orders of such a pair, defect 20 of
-/// `docs/reliability.md`). `None` for a pair whose forms factor (the common path's, to a
-/// few ulps; the definite forms that the robust path also takes, beyond
-/// [`FORM_MAX_CONDITION`](crate::contact::FORM_MAX_CONDITION) or near an end, are not
-/// covered: their coefficients may cancel too) or that the robust path refuses.
+/// `docs/reliability.md`; 2.9e-14 between the orders of two nearly equal needles of
+/// `κ(Q)` 3e11 and 2e12, beyond [`FORM_MAX_CONDITION`](crate::contact::FORM_MAX_CONDITION),
+/// whose bound is 9.3e-8: defect 18). Every pair the robust path answers has it: forms
+/// that do not factor, definite forms beyond `FORM_MAX_CONDITION`, and pairs whose λ* is
+/// near an end ([`NEAR_END`](crate::contact::NEAR_END)). `None` for a pair the common
+/// path answers (a few ulps) or that the robust path refuses.
 ///
 /// The bound is on the robust path's own problem: each form taken as the form of its
 /// rank ([`SINGULAR_PIVOT`](crate::contact::SINGULAR_PIVOT)), whose μ² may differ from
@@ -46,7 +49,7 @@ use crate::contact::{Sym3, Vec3};
 /// # contact_function(&r, &needle, &ball).unwrap();
 /// ```
 pub fn mu2_bound(r12: &Vec3, q1: &Sym3, q2: &Sym3) -> Option<f64> {
-    if Prepared::new(r12, q1, q2).is_ok() {
+    if !robust_answers(r12, q1, q2) {
         return None;
     }
     let p = pencil(r12, q1, q2)?;

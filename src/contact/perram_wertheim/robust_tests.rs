@@ -209,3 +209,27 @@ fn only_an_answer_beyond_double_range_is_an_overflow() {
     let centre = contact_function(&[0.0; 3], &disc, &diagonal([1.0; 3])).unwrap();
     assert_eq!((centre.mu2, centre.stop), (0.0, Stop::Exact));
 }
+
+/// [`robust_answers`] (which `mu2_bound` reads) names the pairs the robust path
+/// answers: a disc (does not factor), sizes 1e8 apart (λ₀ within `NEAR_END` of an end)
+/// and a needle of aspect ratio 1e5 at 45° (`κ(Q)` 5e9, beyond `FORM_MAX_CONDITION`),
+/// and not two balls, nor a needle of aspect ratio 100 (`κ(Q)` 5e3).
+#[test]
+fn robust_answers_names_the_pairs_the_robust_path_takes() {
+    let ball = [1.0, 0.0, 0.0, 1.0, 0.0, 1.0];
+    let disc = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0];
+    let tiny = ball.map(|x| x * 1e16);
+    let needle = |aspect: f64| {
+        let (long, short) = (1.0, 1.0 / (aspect * aspect));
+        let (a, b) = ((long + short) / 2.0, (short - long) / 2.0);
+        [a, b, 0.0, a, 0.0, short]
+    };
+    let r = [0.3, 2.0, 0.7];
+    assert!(!robust_answers(&r, &ball, &ball));
+    assert!(robust_answers(&r, &disc, &ball));
+    assert!(robust_answers(&r, &tiny, &ball));
+    assert!(robust_answers(&r, &needle(1e5), &ball));
+    assert!(!robust_answers(&r, &needle(100.0), &ball));
+    assert!(mu2_bound(&r, &needle(1e5), &ball).is_some());
+    assert!(mu2_bound(&r, &needle(100.0), &ball).is_none());
+}

@@ -37,37 +37,44 @@ impl<T: Arith> Terms<'_, T> {
     /// Two pairs `(lhs, rhs)` for the plain values (`plain`, with `bound` of
     /// [`Terms::second_order_bound`]): `g` is good enough to second order where the
     /// first holds (`lhs ≤ rhs`), to first order where the second does (module docs).
-    /// With `δg ≤ A + B`, `A² = 4p² η² h uᵀQ⁻¹u` (the start) and
+    /// With `δg ≤ A + B`, `A² = 4p² η² h uᵀQ⁻¹u` (the start, `η² ≤ bound / (β num)`) and
     /// `B = ε(8p |s|ᵀ|Q2−Q1||s| + 4|(2λ−1)h|)` (rounding, with
     /// `|s|ᵀ|Q2−Q1||s| ≤ (Σ|s_i|)² Σ|(Q2−Q1)_ij|`), `E = A² + B²` and the budget
     /// `T = GAIN_ROUNDING_TOL · f g′`: `δg²/2 ≤ E ≤ T/2` and `δg|g| ≤ √(2E)|g| ≤ T/2`,
-    /// each multiplied through by `β num` (`A²` carries its inverse), so that neither
-    /// needs a division, a square root or a branch.
+    /// with every term in units of `f` (`E/f²`, `T/f²`, `g/f`), so that no side
+    /// leaves the double range whatever the pair's scale. (Multiplied through by
+    /// `β num` instead, to spare the two divisions, the second test is of degree 5 in
+    /// μ²'s scale: for μ² of 1e-110 it underflowed to `0 ≤ 0` (and left the range
+    /// upwards at 1e121), pairs the common path takes as they are (`r12` and the forms
+    /// within `2^±200`), and passed a `g` 0.4 % off as trusted:
+    /// μ² of such pairs missed its symmetries by up to 1.7e-13, defect 18 of
+    /// `docs/reliability.md`. The checks run only on pairs whose `κ` is above
+    /// [`FAST_MAX_CONDITION`](crate::contact::FAST_MAX_CONDITION).)
     #[inline(always)]
     pub fn plain_g_checks(&self, plain: &(T, T, T), bound: T) -> [(T, T); 2] {
         let (f, h, su) = *plain;
         let one = T::constant(1.0);
-        let uw = self.uw * self.inv * self.inv * self.inv;
+        // Every term in units of f, and η² of β num: free of the pair's scale.
+        let inv_f = f.recip();
+        let eta2 = bound * (self.beta * self.num.hi).recip();
+        let (h, su) = (h * inv_f, su * inv_f);
+        let uw = self.uw * self.inv * self.inv * self.inv * inv_f;
         let a = self.t.times(2.0) - one;
         let g = a * h + self.p * su;
         let gp = (h + (one - self.t.times(2.0)) * su - self.p * uw).times(2.0);
-        let half = f * gp.times(0.5 * GAIN_ROUNDING_TOL);
-        let scale = self.beta * self.num.hi;
-        // A² · β num.
-        let a2 = (self.p * self.p * bound * h * uw).times(4.0);
+        let half = gp.times(0.5 * GAIN_ROUNDING_TOL);
+        // A² / f².
+        let a2 = (self.p * self.p * eta2 * h * uw).times(4.0);
         let xs = self.x[0].abs() + self.x[1].abs() + self.x[2].abs();
         // Σ_ij |(Q2−Q1)_ij|, here only: the checks run on few pairs.
         let q = self.q12;
         let q12_abs = (q[0].abs() + q[3].abs() + q[5].abs())
             + (q[1].abs() + q[2].abs() + q[4].abs()).times(2.0);
-        let s_m_s = xs * xs * q12_abs * self.i2;
+        let s_m_s = xs * xs * q12_abs * self.i2 * inv_f;
         let b = (self.p * s_m_s).times(SU_ROUNDING * f64::EPSILON)
             + (a * h).abs().times(G_ROUNDING * f64::EPSILON);
-        let e = a2 + b * b * scale;
-        [
-            (e, half * scale),
-            (e.times(2.0) * g * g, half * half * scale),
-        ]
+        let e = a2 + b * b;
+        [(e, half), (e.times(2.0) * g * g, half * half)]
     }
 }
 
