@@ -116,12 +116,15 @@ pub fn measured_table(data: &[u8]) {
 }
 
 /// The orientation file of a one-phase scene of spheroids (so that
-/// `relative_to_shape` may be set by the first byte).
+/// `relative_to_shape` may be set by bit 0 of the first byte); bit 1 picks the box: of
+/// three lengths, or two (a 2D scene, whose ellipses take each row's rotation about the
+/// plane's normal).
 pub fn orientation_file(data: &[u8]) {
     let (choice, table) = data.split_first().unwrap_or((&0, &[]));
     let relative = ["false", "true"][usize::from(choice & 1)];
+    let size = ["[20.0, 20.0, 20.0]", "[20.0, 20.0]"][usize::from(choice >> 1 & 1)];
     let scene = format!(
-        "grains = 4\n[box]\nsize = [20.0, 20.0, 20.0]\n[[phase]]\n\
+        "grains = 4\n[box]\nsize = {size}\n[[phase]]\n\
          size = {{ distribution = \"constant\", value = 2.0 }}\n\
          aspect_ratio = {{ distribution = \"constant\", value = 1.5 }}\n\
          texture = {{ kind = \"file\", file = \"orientations.csv\", \

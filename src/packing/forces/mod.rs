@@ -43,8 +43,10 @@ pub(crate) struct Forces {
     pub wall_hits: usize,
     /// Pairs the narrow phase tested.
     pub tested: u64,
-    /// What each task of one chunk of the pair list found.
+    /// What each task of one chunk of the pair list found, and of the chunk before
+    /// (being added up meanwhile).
     found: Vec<Found>,
+    found_next: Vec<Found>,
     /// Per candidate pair: how far its grains may still move before it must be tested
     /// again, as a bound on the sum of their [`motion`](Self::motion) (rounded down);
     /// valid until the list is rebuilt or the scale changes (see [`BOUND_SLACK`]).
@@ -92,6 +94,67 @@ const TURN_ROUNDING: f64 = 16.0 * f64::EPSILON;
 struct Found {
     hits: Vec<(u32, u32, PairForce)>,
     tested: u64,
+}
+
+/// Tests one chunk of the pair list, each task into a buffer of its own, kept from step
+/// to step: no allocation, and the hits come out in pair order whatever the threads.
+/// `test` answers one pair: `None` when skipped, else its force if it overlaps.
+fn test_chunk(
+    pairs: &[Pair],
+    allowance: &mut [f32],
+    found: &mut [Found],
+    test: &(impl Fn(&Pair, &mut f32) -> Option<Option<PairForce>> + Sync),
+) {
+    (pairs.par_chunks(PAIRS_PER_TASK))
+        .zip(allowance.par_chunks_mut(PAIRS_PER_TASK))
+        .zip(found.par_iter_mut())
+        .for_each(|((pairs, allowance), found)| {
+            found.hits.clear();
+            found.tested = 0;
+            for (p, allowance) in pairs.iter().zip(allowance) {
+                if let Some(force) = test(p, allowance) {
+                    found.tested += 1;
+                    if let Some(f) = force {
+                        found.hits.push((p.i, p.j, f));
+                    }
+                }
+            }
+        });
+}
+
+/// The forces, torques and totals the hits add up to.
+struct Sums<'a> {
+    force: &'a mut [[f64; 3]],
+    torque: &'a mut [[f64; 3]],
+    torques: bool,
+    energy: f64,
+    overlaps: usize,
+    min_mu1: f64,
+    tested: u64,
+}
+
+impl Sums<'_> {
+    fn add(&mut self, found: &[Found]) {
+        for found in found {
+            self.tested += found.tested;
+            for &(i, j, h) in &found.hits {
+                let (i, j) = (i as usize, j as usize);
+                self.overlaps += 1;
+                self.min_mu1 = self.min_mu1.min(h.mu1);
+                self.energy += h.energy;
+                for k in 0..3 {
+                    self.force[i][k] -= h.force[k];
+                    self.force[j][k] += h.force[k];
+                }
+                if self.torques {
+                    for k in 0..3 {
+                        self.torque[i][k] += h.torque_i[k];
+                        self.torque[j][k] += h.torque_j[k];
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl Forces {
@@ -169,50 +232,42 @@ impl Forces {
             allow(mu1);
             Some(force)
         };
-        (self.energy, self.overlaps, self.min_mu1, self.tested) = (0.0, 0, f64::INFINITY, 0);
-        let chunks = pairs.chunks(CHUNK).zip(self.allowance.chunks_mut(CHUNK));
-        for (pairs, allowance) in chunks {
+        let mut sums = Sums {
+            force: &mut self.force,
+            torque: &mut self.torque,
+            torques,
+            energy: 0.0,
+            overlaps: 0,
+            min_mu1: f64::INFINITY,
+            tested: 0,
+        };
+        // Each chunk's hits are added while the next chunk is tested (a second thread
+        // has the rest of the tests meanwhile), in pair order whatever the threads.
+        let (mut testing, mut adding) = (&mut self.found, &mut self.found_next);
+        let mut pending = 0;
+        for (pairs, allowance) in pairs.chunks(CHUNK).zip(self.allowance.chunks_mut(CHUNK)) {
             let tasks = pairs.len().div_ceil(PAIRS_PER_TASK);
-            if self.found.len() < tasks {
-                self.found.resize_with(tasks, Found::default);
+            if testing.len() < tasks {
+                testing.resize_with(tasks, Found::default);
             }
-            // Each task fills its own buffer, kept from step to step: no allocation,
-            // and the hits come out in pair order whatever the threads.
-            (pairs.par_chunks(PAIRS_PER_TASK))
-                .zip(allowance.par_chunks_mut(PAIRS_PER_TASK))
-                .zip(self.found[..tasks].par_iter_mut())
-                .for_each(|((pairs, allowance), found)| {
-                    found.hits.clear();
-                    found.tested = 0;
-                    for (p, allowance) in pairs.iter().zip(allowance) {
-                        if let Some(force) = test(p, allowance) {
-                            found.tested += 1;
-                            if let Some(f) = force {
-                                found.hits.push((p.i, p.j, f));
-                            }
-                        }
-                    }
-                });
-            for found in &self.found[..tasks] {
-                self.tested += found.tested;
-                for &(i, j, h) in &found.hits {
-                    let (i, j) = (i as usize, j as usize);
-                    self.overlaps += 1;
-                    self.min_mu1 = self.min_mu1.min(h.mu1);
-                    self.energy += h.energy;
-                    for k in 0..3 {
-                        self.force[i][k] -= h.force[k];
-                        self.force[j][k] += h.force[k];
-                    }
-                    if torques {
-                        for k in 0..3 {
-                            self.torque[i][k] += h.torque_i[k];
-                            self.torque[j][k] += h.torque_j[k];
-                        }
-                    }
-                }
-            }
+            let found = &mut testing[..tasks];
+            rayon::join(
+                || test_chunk(pairs, allowance, found, &test),
+                || sums.add(&adding[..pending]),
+            );
+            std::mem::swap(&mut testing, &mut adding);
+            pending = tasks;
         }
+        sums.add(&adding[..pending]);
+        let Sums {
+            energy,
+            overlaps,
+            min_mu1,
+            tested,
+            ..
+        } = sums;
+        (self.energy, self.overlaps, self.min_mu1, self.tested) =
+            (energy, overlaps, min_mu1, tested);
         self.wall_hits = 0;
         if state.domain.boundary == Boundary::Reflecting {
             self.walls(state, big_s, torques);
