@@ -200,23 +200,29 @@ fn mu2_of_the_robust_path_is_within_its_documented_bound_where_a_coefficient_can
             None,
         ),
     ];
-    let ulps = 16.0 * f64::EPSILON;
     for (r, q1, q2, exact) in pairs {
-        let m = r.map(|x| -x);
-        let (a, b) = (
-            contact_function(&r, &q1, &q2).unwrap(),
-            contact_function(&m, &q2, &q1).unwrap(),
-        );
-        let ba = mu2_bound(&r, &q1, &q2).expect("a bound on the robust path");
-        let bb = mu2_bound(&m, &q2, &q1).expect("a bound on the robust path");
-        assert!(
-            (a.mu2 - b.mu2).abs() <= (ulps + ba + bb) * a.mu2,
-            "{a:?} {b:?}"
-        );
-        if let Some(exact) = exact {
-            assert!((a.mu2 - exact).abs() <= (ulps + ba) * exact, "{a:?} {ba:e}");
-            assert!((b.mu2 - exact).abs() <= (ulps + bb) * exact, "{b:?} {bb:e}");
-        }
+        both_orders_within_mu2_bound(&r, &q1, &q2, exact);
+    }
+}
+
+/// μ² of the pair and of its swap agree within their `mu2_bound`s (and a few ulps),
+/// and each lies within its bound of `exact` (`tools/contact_exact.py`) when given.
+fn both_orders_within_mu2_bound(r: &[f64; 3], q1: &[f64; 6], q2: &[f64; 6], exact: Option<f64>) {
+    let ulps = 16.0 * f64::EPSILON;
+    let m = r.map(|x| -x);
+    let (a, b) = (
+        contact_function(r, q1, q2).unwrap(),
+        contact_function(&m, q2, q1).unwrap(),
+    );
+    let ba = mu2_bound(r, q1, q2).expect("a bound on the robust path");
+    let bb = mu2_bound(&m, q2, q1).expect("a bound on the robust path");
+    assert!(
+        (a.mu2 - b.mu2).abs() <= (ulps + ba + bb) * a.mu2,
+        "{a:?} {b:?}"
+    );
+    if let Some(exact) = exact {
+        assert!((a.mu2 - exact).abs() <= (ulps + ba) * exact, "{a:?} {ba:e}");
+        assert!((b.mu2 - exact).abs() <= (ulps + bb) * exact, "{b:?} {bb:e}");
     }
 }
 
@@ -251,19 +257,5 @@ fn mu2_of_two_nearly_equal_needles_beyond_the_form_condition_limit_is_within_its
         1.3824172084878715e306,
         1.3824172097958654e306,
     ];
-    let exact = 3.4562907665411286e305;
-    let m = r.map(|x| -x);
-    let (a, b) = (
-        contact_function(&r, &q1, &q2).unwrap(),
-        contact_function(&m, &q2, &q1).unwrap(),
-    );
-    let ba = mu2_bound(&r, &q1, &q2).expect("a bound on the robust path");
-    let bb = mu2_bound(&m, &q2, &q1).expect("a bound on the robust path");
-    let ulps = 16.0 * f64::EPSILON;
-    assert!(
-        (a.mu2 - b.mu2).abs() <= (ulps + ba + bb) * a.mu2,
-        "{a:?} {b:?}"
-    );
-    assert!((a.mu2 - exact).abs() <= (ulps + ba) * exact, "{a:?} {ba:e}");
-    assert!((b.mu2 - exact).abs() <= (ulps + bb) * exact, "{b:?} {bb:e}");
+    both_orders_within_mu2_bound(&r, &q1, &q2, Some(3.4562907665411286e305));
 }
