@@ -93,7 +93,8 @@ pub(crate) fn contact_fast_prepared(
 /// (the square of the grain's aspect ratio): about 1e-12 for an aspect ratio of 100,
 /// far below what a force or a torque needs (μ² is `c`'s, untouched). A pair whose λ
 /// is within [`NEAR_END`] of an end, of forms that needed rescaling, or where
-/// `det Q(λ)` or `|v|` leave the range this needs, gets [`geometry_from`]'s answer.
+/// `det Q(λ)` is not positive or the point or gap leave the double range, gets
+/// [`geometry_from`]'s answer.
 #[inline]
 pub(crate) fn response_geometry(
     c: Contact,
@@ -107,20 +108,11 @@ pub(crate) fn response_geometry(
         let q: Sym3 = std::array::from_fn(|k| m * q1[k] + lambda * q2[k]);
         let adj = adjugate(&q);
         let det = det(&q, &adj);
-        let v = sym_mul(&adj, r12);
-        let norm = dot(&v, &v).sqrt();
-        if det > 0.0 && norm.is_finite() && norm >= NORM_IN_RANGE {
-            let normal = v.map(|x| x / norm);
+        if det > 0.0 {
+            let v = sym_mul(&adj, r12);
             let point = sym_mul(q1, &v).map(|x| x * (m / det));
-            let gap = (1.0 - 1.0 / c.mu2.sqrt()) * dot(r12, &normal);
-            if gap.is_finite() && point.iter().all(|x| x.is_finite()) {
-                return Ok(ContactGeometry {
-                    mu2: c.mu2,
-                    lambda,
-                    point,
-                    normal,
-                    gap,
-                });
+            if let Ok(g) = along(c, r12, point, v) {
+                return Ok(g);
             }
         }
     }
@@ -176,6 +168,13 @@ fn geometry_from(
             }
         }
     };
+    along(c, r12, point, s)
+}
+
+/// The geometry of `c` with contact point `point` (from the first centre) and the
+/// normal along `s`, a positive multiple of `Q(λ)⁻¹ r12`; an error where the point or
+/// the gap leave the double range.
+fn along(c: Contact, r12: &Vec3, point: Vec3, s: Vec3) -> Result<ContactGeometry, ContactError> {
     let mut norm = dot(&s, &s).sqrt();
     let mut normal = s.map(|x| x / norm);
     if !(norm.is_finite() && norm >= NORM_IN_RANGE) {

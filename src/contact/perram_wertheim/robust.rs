@@ -138,8 +138,6 @@ pub(super) fn normalised(
     Ok((Some(e), q.map(|x| ldexp(x, -e))))
 }
 
-/// The error for an indefinite form, with the first pivot of its LDLᵀ factorisation
-/// (in the given order) that is not positive enough.
 /// The weights of the two forms' sizes `e1`, `e2` (powers of two, the larger 1) and
 /// the numerator and denominator of `ψ` in `y` from the coefficients `a`, `b`.
 pub(super) fn weighted(
@@ -161,6 +159,8 @@ pub(super) fn weighted(
     (w1, w2, n, c)
 }
 
+/// The error for an indefinite form, with the first pivot of its LDLᵀ factorisation
+/// (in the given order) that is not positive enough.
 fn indefinite(q: &Sym3, what: &'static str) -> ContactError {
     let (pivot, value) = match Ldl::factor(q) {
         Err(bad) => bad,
