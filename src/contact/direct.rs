@@ -35,22 +35,7 @@ impl Eval {
         q2: &Sym3,
         q12: &Sym3,
     ) -> Result<Self, ContactError> {
-        let m = 1.0 - lambda;
-        let (q, ldl) = factor_at(lambda, q1, q2)?;
-        let s = ldl.solve(r);
-        let rs = dot(r, &s);
-        let u = sym_mul(q12, &s);
-        let su = dot(&s, &u);
-        let uv = ldl.quadratic_form(&u);
-        let lm = lambda * m;
-        Ok(Self {
-            lambda,
-            f: lm * rs,
-            g: (2.0 * lambda - 1.0) * rs + lm * su,
-            gp: 2.0 * rs + 2.0 * (1.0 - 2.0 * lambda) * su - 2.0 * lm * uv,
-            ldl,
-            q,
-        })
+        Ok(Half::at(lambda, r, q1, q2)?.derivatives(q12))
     }
 
     /// The gain `g² / (2g′)` predicted by the Newton model, i.e. how far `f(λ)` is
@@ -68,6 +53,61 @@ impl Eval {
     /// the sum of the principal 2×2 minors (`λ_max ≤ tr`, `λ_min ≥ det / σ₂`).
     pub fn condition_bound(&self) -> f64 {
         condition_bound(&self.q, &self.ldl)
+    }
+}
+
+/// `f` alone at λ, with what its derivatives need: the first half of an [`Eval`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Half {
+    pub lambda: f64,
+    pub f: f64,
+    /// `s = Q(λ)⁻¹ r` and `rᵀs`.
+    pub s: Vec3,
+    rs: f64,
+    pub ldl: Ldl,
+    q: Sym3,
+}
+
+impl Half {
+    /// Evaluates `f` at `lambda` in double precision.
+    #[inline(always)]
+    pub fn at(lambda: f64, r: &Vec3, q1: &Sym3, q2: &Sym3) -> Result<Self, ContactError> {
+        let (q, ldl) = factor_at(lambda, q1, q2)?;
+        let s = ldl.solve(r);
+        let rs = dot(r, &s);
+        Ok(Self {
+            lambda,
+            f: lambda * (1.0 - lambda) * rs,
+            s,
+            rs,
+            ldl,
+            q,
+        })
+    }
+
+    /// `g` and `g′` too, with `q12 = Q2 − Q1`.
+    #[inline(always)]
+    pub fn derivatives(self, q12: &Sym3) -> Eval {
+        let Self {
+            lambda,
+            f,
+            s,
+            rs,
+            ldl,
+            q,
+        } = self;
+        let u = sym_mul(q12, &s);
+        let su = dot(&s, &u);
+        let uv = ldl.quadratic_form(&u);
+        let lm = lambda * (1.0 - lambda);
+        Eval {
+            lambda,
+            f,
+            g: (2.0 * lambda - 1.0) * rs + lm * su,
+            gp: 2.0 * rs + 2.0 * (1.0 - 2.0 * lambda) * su - 2.0 * lm * uv,
+            ldl,
+            q,
+        }
     }
 }
 

@@ -28,6 +28,7 @@ mod scale;
 mod sym;
 #[cfg(test)]
 mod test_pairs;
+mod track;
 pub mod wang;
 
 pub use dimension::{
@@ -59,6 +60,7 @@ pub use prepared::PreparedEllipsoid;
 pub use refine::{GAIN_ROUNDING_TOL, REFINEMENT_TOL};
 pub use rotation::{rotation_column, rotation_matrix};
 pub(crate) use sym::dot;
+pub(crate) use track::{contact_tracked, Touch};
 
 /// A vector in 3D: `[x, y, z]`.
 pub type Vec3 = [f64; 3];

@@ -12,6 +12,7 @@ use super::state::State;
 use super::{Counters, FireParams, Outcome, PackError, Progress};
 use crate::contact::dot;
 use crate::scene::{Boundary, Rotation};
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -280,32 +281,49 @@ impl Fire {
             0.0
         };
         let keep = 1.0 - self.alpha;
+        let limit = |i: usize| {
+            let m = root_mass[i];
+            m * p.max_move * big_s * state.shapes[i].inscribed_radius() / dt
+        };
+        // v ← (1 − α) v + mix F, at most `limit` (a grain moves at most `max_move` of
+        // its smallest semi-axis), then x += dt v / √m.
+        let advance = |v: &mut [f64; 3], f: &[f64; 3], limit: f64| {
+            *v = v.map(|x| keep * x);
+            axpy(v, mix, f);
+            clamp_norm(v, limit);
+        };
         let mut turned = std::mem::take(&mut self.turned);
         turned.clear();
-        for i in 0..n {
+        if !rotate {
+            // Each grain on its own: the same arithmetic in any order.
+            let centres = &mut state.centres;
+            (self.velocity.par_iter_mut())
+                .zip(centres)
+                .zip(&scaled)
+                .enumerate()
+                .with_min_len(GRAINS_PER_TASK)
+                .for_each(|(i, ((v, c), f))| {
+                    advance(v, f, limit(i));
+                    axpy(c, dt / root_mass[i], v);
+                });
+        }
+        for i in (0..n).filter(|_| rotate) {
             let m = root_mass[i];
-            let limit = m * p.max_move * big_s * state.shapes[i].inscribed_radius() / dt;
-            let f = scaled[i];
+            let limit = limit(i);
             let v = &mut self.velocity[i];
-            *v = v.map(|x| keep * x);
-            axpy(v, mix, &f);
-            clamp_norm(v, limit);
+            advance(v, &scaled[i], limit);
             axpy(&mut state.centres[i], dt / m, v);
-            if rotate {
-                let l = lever(i);
-                let w = &mut self.spin[i];
-                *w = w.map(|x| keep * x);
-                axpy(w, mix, &torque(i));
-                clamp_norm(w, limit);
-                let angle = w.map(|x| dt * x / (l * m));
-                if angle.iter().any(|&a| a != 0.0) {
-                    let q = rotate_by(state.quaternions[i], angle);
-                    if state.within_turn(i, q, max_turn) {
-                        turned.push((i, q));
-                    } else {
-                        // At the limit: the grain stops turning that way.
-                        *w = [0.0; 3];
-                    }
+            let l = lever(i);
+            let w = &mut self.spin[i];
+            advance(w, &torque(i), limit);
+            let angle = w.map(|x| dt * x / (l * m));
+            if angle.iter().any(|&a| a != 0.0) {
+                let q = rotate_by(state.quaternions[i], angle);
+                if state.within_turn(i, q, max_turn) {
+                    turned.push((i, q));
+                } else {
+                    // At the limit: the grain stops turning that way.
+                    *w = [0.0; 3];
                 }
             }
         }
@@ -333,6 +351,9 @@ fn masses(state: &State, root_mass: &mut Vec<f64>) {
     root_mass.clear();
     root_mass.extend((state.shapes.iter()).map(|e| (e.inscribed_radius() / median).max(1.0)));
 }
+
+/// Grains one rayon task moves: a few arithmetic operations each.
+const GRAINS_PER_TASK: usize = 8192;
 
 /// `y += a x`.
 fn axpy(y: &mut [f64; 3], a: f64, x: &[f64; 3]) {

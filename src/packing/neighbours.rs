@@ -5,6 +5,10 @@ use super::state::State;
 use super::NeighbourParams;
 use super::PackError;
 use crate::octree::{BoxShape, Octree, Pair, Sphere};
+use rayon::prelude::*;
+
+/// Grains one rayon task looks at: a few arithmetic operations each.
+const GRAINS_PER_TASK: usize = 8192;
 
 /// The candidate pairs and what is needed to know when they go stale.
 pub(crate) struct Neighbours {
@@ -64,12 +68,12 @@ impl Neighbours {
         if self.anchors.len() != state.len() {
             return true;
         }
-        let moved = state
-            .centres
-            .iter()
+        // A largest element does not depend on the order it is looked for in.
+        let moved = (state.centres.par_iter())
             .zip(&self.anchors)
+            .with_min_len(GRAINS_PER_TASK)
             .map(|(a, b)| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>())
-            .fold(0.0f64, f64::max)
+            .reduce(|| 0.0, f64::max)
             .sqrt();
         let grown = (scale - self.built_scale).max(0.0) * state.max_bounding_radius;
         2.0 * moved + 2.0 * grown > self.skin

@@ -14,16 +14,15 @@
 //! penetration.
 
 use super::grains::turn_angle;
-use super::neighbours::relative;
 use super::state::State;
-use crate::contact::dot;
 use crate::octree::Pair;
 use crate::scene::Boundary;
 use rayon::prelude::*;
 
+mod chunk;
 mod pair;
+use chunk::{test_chunk, Found, Memo, PairTest, PAIRS_PER_TASK};
 pub(crate) use pair::{cross, pair_energy};
-use pair::{pair_force, PairForce};
 
 /// The energy, forces and torques of a state, and what the narrow phase found.
 #[derive(Default)]
@@ -47,10 +46,9 @@ pub(crate) struct Forces {
     /// (being added up meanwhile).
     found: Vec<Found>,
     found_next: Vec<Found>,
-    /// Per candidate pair: how far its grains may still move before it must be tested
-    /// again, as a bound on the sum of their [`motion`](Self::motion) (rounded down);
-    /// valid until the list is rebuilt or the scale changes (see [`BOUND_SLACK`]).
-    allowance: Vec<f32>,
+    /// What each candidate pair keeps between steps; valid until the list is rebuilt
+    /// or the scale changes.
+    memo: Vec<Memo>,
     /// Distance each grain has moved since the list was built, summed step by step,
     /// and where it was at the last evaluation.
     travel: Vec<f64>,
@@ -77,8 +75,9 @@ pub(crate) struct Forces {
 /// change `K` itself: turns that sweep no point of either grain further than `h` in
 /// total keep `K` inside `K ⊕ B(h) ⊆ (1 + h/ρ) K`, which divides the bound by
 /// `1 + h/ρ`. A pair is skipped while that bound exceeds `S (1 + BOUND_SLACK)`; the
-/// slack covers the fast contact function's error (≤ 1e-8 relative even on the extreme
-/// reference set) with room to spare. Multiplied out, with `T = S (1 + BOUND_SLACK)`:
+/// slack covers the error of the μ₁ the narrow phase found (a lower bound to the
+/// rounding of one evaluation when tracked; the fast contact function's error, ≤ 1e-8
+/// relative even on the extreme reference set, otherwise) with room to spare. Multiplied out, with `T = S (1 + BOUND_SLACK)`:
 /// the pair is skipped while `t' + T h' ≤ (m − T) ρ + t + T h`, its grains' motions
 /// (travel plus `T` times sweep) summed now against then, which is what each pair
 /// stores (its allowance, in `f32` rounded down: a pair is only ever tested sooner).
@@ -87,40 +86,6 @@ pub const BOUND_SLACK: f64 = 1e-6;
 /// Added to every turn angle in the sweep of [`BOUND_SLACK`]'s bound, for the rounding
 /// of [`turn_angle`] (a few ε).
 const TURN_ROUNDING: f64 = 16.0 * f64::EPSILON;
-
-/// One task's share of a chunk of the pair list: its overlapping pairs and what they
-/// contribute, in pair order, and how many pairs it tested.
-#[derive(Default)]
-struct Found {
-    hits: Vec<(u32, u32, PairForce)>,
-    tested: u64,
-}
-
-/// Tests one chunk of the pair list, each task into a buffer of its own, kept from step
-/// to step: no allocation, and the hits come out in pair order whatever the threads.
-/// `test` answers one pair: `None` when skipped, else its force if it overlaps.
-fn test_chunk(
-    pairs: &[Pair],
-    allowance: &mut [f32],
-    found: &mut [Found],
-    test: &(impl Fn(&Pair, &mut f32) -> Option<Option<PairForce>> + Sync),
-) {
-    (pairs.par_chunks(PAIRS_PER_TASK))
-        .zip(allowance.par_chunks_mut(PAIRS_PER_TASK))
-        .zip(found.par_iter_mut())
-        .for_each(|((pairs, allowance), found)| {
-            found.hits.clear();
-            found.tested = 0;
-            for (p, allowance) in pairs.iter().zip(allowance) {
-                if let Some(force) = test(p, allowance) {
-                    found.tested += 1;
-                    if let Some(f) = force {
-                        found.hits.push((p.i, p.j, f));
-                    }
-                }
-            }
-        });
-}
 
 /// The forces, torques and totals the hits add up to.
 struct Sums<'a> {
@@ -137,8 +102,8 @@ impl Sums<'_> {
     fn add(&mut self, found: &[Found]) {
         for found in found {
             self.tested += found.tested;
-            for &(i, j, h) in &found.hits {
-                let (i, j) = (i as usize, j as usize);
+            for (n, h) in found.hits.iter().enumerate() {
+                let (i, j) = (h.i as usize, h.j as usize);
                 self.overlaps += 1;
                 self.min_mu1 = self.min_mu1.min(h.mu1);
                 self.energy += h.energy;
@@ -147,9 +112,10 @@ impl Sums<'_> {
                     self.force[j][k] += h.force[k];
                 }
                 if self.torques {
+                    let [ti, tj] = found.torques[n];
                     for k in 0..3 {
-                        self.torque[i][k] += h.torque_i[k];
-                        self.torque[j][k] += h.torque_j[k];
+                        self.torque[i][k] += ti[k];
+                        self.torque[j][k] += tj[k];
                     }
                 }
             }
@@ -178,13 +144,13 @@ impl Forces {
         }
         let skip_above = big_s * (1.0 + BOUND_SLACK);
         let fresh = build != self.build
-            || self.allowance.len() != pairs.len()
+            || self.memo.len() != pairs.len()
             || skip_above != self.skip_above
             || torques != self.turning;
         if fresh {
             (self.build, self.skip_above, self.turning) = (build, skip_above, torques);
-            self.allowance.clear();
-            self.allowance.resize(pairs.len(), f32::NEG_INFINITY);
+            self.memo.clear();
+            self.memo.resize(pairs.len(), Memo::NEW);
             self.travel.clear();
             self.travel.resize(n, 0.0);
             self.last.clone_from(&state.centres);
@@ -205,32 +171,11 @@ impl Forces {
         } else {
             &self.travel
         };
-        let (centres, shapes) = (&state.centres, &state.shapes);
-        let (round, axes, shape) = (&state.round, &state.axes, &state.box_shape);
-        // One pair: skipped while its allowance lasts, else tested, its allowance
-        // renewed, and its force returned when it overlaps.
-        let test = |p: &Pair, allowance: &mut f32| -> Option<Option<PairForce>> {
-            let (i, j) = (p.i as usize, p.j as usize);
-            let spent = motion[i] + motion[j];
-            if spent <= f64::from(*allowance) {
-                return None;
-            }
-            let (ei, ej) = (&shapes[i], &shapes[j]);
-            let inner = ei.inscribed_radius() + ej.inscribed_radius();
-            let mut allow = |m: f64| *allowance = round_down((m - skip_above) * inner + spent);
-            let r = relative(centres, p, shape);
-            // The gauge of a body inside the ball of radius b_i + b_j is at least
-            // |r| / (b_i + b_j).
-            let outer = ei.bounding_radius() + ej.bounding_radius();
-            let far = dot(&r, &r).sqrt() / outer;
-            if far >= skip_above {
-                allow(far);
-                return Some(None);
-            }
-            let radii = (round[i] && round[j]).then(|| (axes[i][0], axes[j][0]));
-            let (mu1, force) = pair_force(&r, (ei, ej), radii, big_s, p);
-            allow(mu1);
-            Some(force)
+        let pair_test = PairTest {
+            motion,
+            state,
+            skip_above,
+            big_s,
         };
         let mut sums = Sums {
             force: &mut self.force,
@@ -245,14 +190,14 @@ impl Forces {
         // has the rest of the tests meanwhile), in pair order whatever the threads.
         let (mut testing, mut adding) = (&mut self.found, &mut self.found_next);
         let mut pending = 0;
-        for (pairs, allowance) in pairs.chunks(CHUNK).zip(self.allowance.chunks_mut(CHUNK)) {
+        for (pairs, memo) in pairs.chunks(CHUNK).zip(self.memo.chunks_mut(CHUNK)) {
             let tasks = pairs.len().div_ceil(PAIRS_PER_TASK);
             if testing.len() < tasks {
                 testing.resize_with(tasks, Found::default);
             }
             let found = &mut testing[..tasks];
             rayon::join(
-                || test_chunk(pairs, allowance, found, &test),
+                || test_chunk(pairs, memo, (found, torques), &pair_test),
                 || sums.add(&adding[..pending]),
             );
             std::mem::swap(&mut testing, &mut adding);
@@ -340,16 +285,6 @@ impl Forces {
     }
 }
 
-/// `x` in `f32`, rounded down: an allowance never grows by its rounding.
-fn round_down(x: f64) -> f32 {
-    let y = x as f32;
-    if f64::from(y) > x {
-        y.next_down()
-    } else {
-        y
-    }
-}
-
 /// Pairs evaluated before their forces are added up: bounds the memory of the
 /// overlapping pairs' contributions (about 100 bytes each) whatever the scene's size.
 /// Two chunks' contributions are held at once (one tested while the other is added
@@ -359,10 +294,6 @@ const CHUNK: usize = 1 << 17;
 
 /// Grains one rayon task advances: a few arithmetic operations each.
 const GRAINS_PER_TASK: usize = 8192;
-
-/// Pairs one rayon task takes: one pair is a single contact-function call, too little
-/// work to be worth a task of its own.
-const PAIRS_PER_TASK: usize = 1024;
 
 #[cfg(test)]
 mod tests;

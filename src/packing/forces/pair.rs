@@ -1,7 +1,8 @@
 //! One candidate pair: its contact factor, and the force and torques of its overlap.
 
 use crate::contact::{
-    contact_fast_prepared, dot, response_geometry, ContactGeometry, PreparedEllipsoid,
+    contact_fast_prepared, contact_tracked, dot, response_geometry, ContactGeometry,
+    PreparedEllipsoid, Touch,
 };
 use crate::octree::Pair;
 
@@ -16,29 +17,44 @@ pub(super) struct PairForce {
     pub mu1: f64,
 }
 
-/// μ₁ of one candidate pair, and its force and torques at scale `big_s` (`None` when
-/// it does not overlap there). `radii` are given when both grains are spheres.
+/// μ₁ of one candidate pair (a lower bound, to rounding), and its force and torques
+/// at scale `big_s` (`None` when it does not overlap there). `radii` are given when
+/// both grains are spheres; `lambda` is where the pair's contact function starts, and
+/// is left where the next evaluation should start.
 pub(super) fn pair_force(
     r: &[f64; 3],
     (ei, ej): (&PreparedEllipsoid, &PreparedEllipsoid),
     radii: Option<(f64, f64)>,
-    big_s: f64,
+    (big_s, lambda): (f64, &mut f32),
     p: &Pair,
 ) -> (f64, Option<PairForce>) {
     let reach = big_s * (ei.inscribed_radius() + ej.inscribed_radius());
     let w = reach * reach;
     // The geometry only for a pair that overlaps: most of the others are tested to
     // renew their allowance, which needs μ alone.
-    let g = if let Some((ri, rj)) = radii {
-        sphere_geometry(r, ri, rj)
+    let found = if let Some((ri, rj)) = radii {
+        sphere_geometry(r, ri, rj).map(touching)
+    } else if let Some(t) =
+        contact_tracked(r, ei, ej, f64::from(*lambda), (big_s * big_s, TRACK_GAIN))
+    {
+        *lambda = t.next as f32;
+        match t.touch {
+            Some(touch) => Some((t.mu2_lower, touch)),
+            None => return (t.mu2_lower.sqrt(), None),
+        }
     } else {
         match contact_fast_prepared(r, ei, ej) {
-            Ok(c) if c.mu2.is_finite() && c.mu2.sqrt() >= big_s => return (c.mu2.sqrt(), None),
-            Ok(c) => response_geometry(c, r, ei, ej).ok(),
+            Ok(c) => {
+                *lambda = c.lambda as f32;
+                if c.mu2.is_finite() && c.mu2.sqrt() >= big_s {
+                    return (c.mu2.sqrt(), None);
+                }
+                response_geometry(c, r, ei, ej).ok().map(touching)
+            }
             Err(_) => None,
         }
     };
-    let Some(g) = g.filter(|g| g.mu2.is_finite()) else {
+    let Some((mu2, touch)) = found.filter(|(mu2, _)| mu2.is_finite()) else {
         // Coincident centres (or a pair the contact function cannot handle, which
         // the scene's validated shapes do not produce): push apart along a fixed
         // direction with the force of a full overlap.
@@ -52,25 +68,45 @@ pub(super) fn pair_force(
         };
         return (0.0, Some(force));
     };
-    let mu1 = g.mu2.sqrt();
+    let mu1 = mu2.sqrt();
     let mu = mu1 / big_s;
     if mu >= 1.0 {
         return (mu1, None);
     }
-    let rn = dot(r, &g.normal);
-    // −∂U/∂r = 2 w (1 − μ) ∇μ, ∇μ = μ n / (r·n).
+    let rn = dot(r, &touch.direction);
+    // −∂U/∂r = 2 w (1 − μ) ∇μ, ∇μ = μ n / (r·n), for n any positive multiple of the
+    // normal.
     let scale = 2.0 * w * (1.0 - mu) * mu / rn;
-    let force = g.normal.map(|x| scale * x);
-    let pj = [0, 1, 2].map(|k| g.point[k] - r[k]);
+    let force = touch.direction.map(|x| scale * x);
+    let point = touch.point;
+    let pj = [0, 1, 2].map(|k| point[k] - r[k]);
     let force = PairForce {
         force,
-        torque_i: cross(&g.point, &force.map(|x| -x)),
+        torque_i: cross(&point, &force.map(|x| -x)),
         torque_j: cross(&pj, &force),
         energy: pair_energy(reach, mu),
         mu1,
     };
     (mu1, Some(force))
 }
+
+/// A geometry's contact: its μ², its unit normal and its point.
+fn touching(g: ContactGeometry) -> (f64, Touch) {
+    let (direction, point) = (g.normal, g.point);
+    (g.mu2, Touch { direction, point })
+}
+
+/// How close to μ² the narrow phase takes a pair's tracked `f(λ)` (module
+/// `contact::track`), as the Newton model's relative gain. 1e-6 puts μ within 5e-7 of
+/// its value and the normal (taken at Newton's next λ, to first order) within about
+/// 1e-6, so forces agree with the maximiser's to 1e-6 of their size
+/// (`forces::tests::skipping_pairs_changes_no_force`); the value is always a lower
+/// bound, so a pair found apart is apart, and the final check is exact anyway. On
+/// `benches/scale/hundred_thousand.toml` the maximiser's own tolerance
+/// ([`GAIN_TOL`](crate::contact::GAIN_TOL), 9.2e-12) takes 1.7 evaluations of `f` a
+/// tracked pair, 1e-6 1.1 (narrow phase 22 % shorter); 1e-4 and 1e-3 take 9–10 %
+/// more FIRE steps (BENCHMARKS.md, "Issue 26: contact tracked from step to step").
+const TRACK_GAIN: f64 = 1e-6;
 
 /// The overlap energy of a pair whose bodies, scaled by `big_s`, overlap with gauge
 /// `μ = μ₁ / big_s < 1`: `w (1 − μ)²` with `w = reach²`, `reach = big_s (ρ_i + ρ_j)`

@@ -1,6 +1,8 @@
 //! Forces and torques against finite differences of the energy.
 
+use super::chunk::round_down;
 use super::*;
+use crate::contact::dot;
 use crate::packing::grains::rotate_by;
 use crate::scene::{Domain, GrainSpec};
 
@@ -209,10 +211,30 @@ fn a_pairs_contact_factor_stays_above_its_move_and_turn_bound() {
     assert!(tight > 0);
 }
 
+/// How far a tracked pair's force may stray from the maximiser's: its normal is taken
+/// at λ* to first order in the last Newton step δ, so it errs by `O(δ²)`, about
+/// `TRACK_GAIN` (`pair.rs`) (measured here: 8.7e-7 for forces, 9.5e-7 for torques,
+/// relative to the largest; 1.5e-4 and 5.4e-4 with the normal at λ itself).
+const TRACKED_FORCE_TOL: f64 = 1e-5;
+/// The energy is second order in λ's error: within `TRACK_GAIN` of μ² (measured 3e-7).
+const TRACKED_ENERGY_TOL: f64 = 2e-6;
+
+/// The largest difference of two fields of vectors, relative to the largest of `b`.
+fn deviation(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    let norm = |v: &[f64; 3]| dot(v, v).sqrt();
+    let top = b.iter().map(norm).fold(0.0, f64::max);
+    let off = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| norm(&std::array::from_fn(|k| x[k] - y[k])));
+    off.fold(0.0, f64::max) / top.max(f64::MIN_POSITIVE)
+}
+
 /// The skip test (allowances in `f32` against each grain's motion) never skips a pair
 /// that overlaps: over many small moves and turns of a crowd within one list build,
-/// the forces, torques and energy are bitwise those of a fresh evaluation that tests
-/// every pair, and pairs are skipped at all.
+/// the same pairs overlap as in a fresh evaluation that tests every pair, with the
+/// same forces, torques and energy to the tracking's tolerance, and pairs are skipped
+/// at all.
 #[test]
 fn skipping_pairs_changes_no_force() {
     use rand::{Rng, SeedableRng};
@@ -244,9 +266,20 @@ fn skipping_pairs_changes_no_force() {
         kept.evaluate(&state, &pairs, 1, big_s, true);
         let mut fresh = Forces::default();
         fresh.evaluate(&state, &pairs, 1, big_s, true);
-        assert_eq!(kept.force, fresh.force, "step {step}");
-        assert_eq!(kept.torque, fresh.torque, "step {step}");
-        assert_eq!(kept.energy.to_bits(), fresh.energy.to_bits(), "step {step}");
+        // A fresh evaluation starts every pair's λ anew, so the two agree to the
+        // tracking's tolerance, not bit for bit; a pair skipped wrongly would lose a
+        // whole force, or change the count.
+        assert_eq!(kept.overlaps, fresh.overlaps, "step {step}");
+        assert!(
+            deviation(&kept.force, &fresh.force) <= TRACKED_FORCE_TOL,
+            "step {step}"
+        );
+        assert!(
+            deviation(&kept.torque, &fresh.torque) <= TRACKED_FORCE_TOL,
+            "step {step}"
+        );
+        let energy = (kept.energy - fresh.energy).abs();
+        assert!(energy <= TRACKED_ENERGY_TOL * fresh.energy, "step {step}");
         skipped += fresh.tested - kept.tested;
         overlapping += kept.overlaps;
         for c in &mut state.centres {
