@@ -8,7 +8,7 @@ use super::forces::Forces;
 use super::grains::rotate_by;
 use super::jamming::{JamTest, Patience, Verdict};
 use super::neighbours::Neighbours;
-use super::state::State;
+use super::state::{State, GRAINS_PER_TASK};
 use super::{Counters, FireParams, Outcome, PackError, Progress};
 use crate::contact::dot;
 use crate::scene::{Boundary, Rotation};
@@ -294,7 +294,28 @@ impl Fire {
         };
         let mut turned = std::mem::take(&mut self.turned);
         turned.clear();
-        if !rotate {
+        if rotate {
+            for i in 0..n {
+                let m = root_mass[i];
+                let limit = limit(i);
+                let v = &mut self.velocity[i];
+                advance(v, &scaled[i], limit);
+                axpy(&mut state.centres[i], dt / m, v);
+                let l = lever(i);
+                let w = &mut self.spin[i];
+                advance(w, &torque(i), limit);
+                let angle = w.map(|x| dt * x / (l * m));
+                if angle.iter().any(|&a| a != 0.0) {
+                    let q = rotate_by(state.quaternions[i], angle);
+                    if state.within_turn(i, q, max_turn) {
+                        turned.push((i, q));
+                    } else {
+                        // At the limit: the grain stops turning that way.
+                        *w = [0.0; 3];
+                    }
+                }
+            }
+        } else {
             // Each grain on its own: the same arithmetic in any order.
             let centres = &mut state.centres;
             (self.velocity.par_iter_mut())
@@ -306,26 +327,6 @@ impl Fire {
                     advance(v, f, limit(i));
                     axpy(c, dt / root_mass[i], v);
                 });
-        }
-        for i in (0..n).filter(|_| rotate) {
-            let m = root_mass[i];
-            let limit = limit(i);
-            let v = &mut self.velocity[i];
-            advance(v, &scaled[i], limit);
-            axpy(&mut state.centres[i], dt / m, v);
-            let l = lever(i);
-            let w = &mut self.spin[i];
-            advance(w, &torque(i), limit);
-            let angle = w.map(|x| dt * x / (l * m));
-            if angle.iter().any(|&a| a != 0.0) {
-                let q = rotate_by(state.quaternions[i], angle);
-                if state.within_turn(i, q, max_turn) {
-                    turned.push((i, q));
-                } else {
-                    // At the limit: the grain stops turning that way.
-                    *w = [0.0; 3];
-                }
-            }
         }
         let done = state.set_orientations(&turned);
         (self.levers, self.torques, self.turned) = (levers, torques, turned);
@@ -351,9 +352,6 @@ fn masses(state: &State, root_mass: &mut Vec<f64>) {
     root_mass.clear();
     root_mass.extend((state.shapes.iter()).map(|e| (e.inscribed_radius() / median).max(1.0)));
 }
-
-/// Grains one rayon task moves: a few arithmetic operations each.
-const GRAINS_PER_TASK: usize = 8192;
 
 /// `y += a x`.
 fn axpy(y: &mut [f64; 3], a: f64, x: &[f64; 3]) {

@@ -1,14 +1,11 @@
 //! The broad phase of the loop: a Verlet list of candidate pairs from the octree,
 //! rebuilt only when a pair may have come into reach since the last build.
 
-use super::state::State;
+use super::state::{State, GRAINS_PER_TASK};
 use super::NeighbourParams;
 use super::PackError;
 use crate::octree::{BoxShape, Octree, Pair, Sphere};
 use rayon::prelude::*;
-
-/// Grains one rayon task looks at: a few arithmetic operations each.
-const GRAINS_PER_TASK: usize = 8192;
 
 /// The candidate pairs and what is needed to know when they go stale.
 pub(crate) struct Neighbours {

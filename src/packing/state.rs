@@ -10,6 +10,10 @@ use crate::octree::{wrap_coordinate, BoxShape, Sphere};
 use crate::scene::{Boundary, Domain, GrainSpec, Rotation};
 use rayon::prelude::*;
 
+/// Grains one rayon task takes in a loop over the grains that does a few arithmetic
+/// operations each (their travel, their move, the largest displacement).
+pub(super) const GRAINS_PER_TASK: usize = 8192;
+
 /// Everything about the grains at scale 1 (target sizes), and their centres.
 /// The shapes (semi-axes, prepared shapes, half-widths, radii) are inflated by
 /// `1 + gap`: two of them apart means the grains themselves keep the gap.

@@ -14,7 +14,7 @@
 //! penetration.
 
 use super::grains::turn_angle;
-use super::state::State;
+use super::state::{State, GRAINS_PER_TASK};
 use crate::octree::Pair;
 use crate::scene::Boundary;
 use rayon::prelude::*;
@@ -291,9 +291,6 @@ impl Forces {
 /// up): 2^17 keeps both within what one chunk of 2^18 held (1.44 GB peak on 1.17 M
 /// grains; 1.51 GB with two of 2^18).
 const CHUNK: usize = 1 << 17;
-
-/// Grains one rayon task advances: a few arithmetic operations each.
-const GRAINS_PER_TASK: usize = 8192;
 
 #[cfg(test)]
 mod tests;

@@ -104,8 +104,9 @@ fn touching(g: ContactGeometry) -> (f64, Touch) {
 /// bound, so a pair found apart is apart, and the final check is exact anyway. On
 /// `benches/scale/hundred_thousand.toml` the maximiser's own tolerance
 /// ([`GAIN_TOL`](crate::contact::GAIN_TOL), 9.2e-12) takes 1.7 evaluations of `f` a
-/// tracked pair, 1e-6 1.1 (narrow phase 22 % shorter); 1e-4 and 1e-3 take 9–10 %
-/// more FIRE steps (BENCHMARKS.md, "Issue 26: contact tracked from step to step").
+/// tracked pair, 1e-6 1.1 (narrow phase 22 % shorter); 1e-5 and 1e-4 packed in the
+/// same time within noise, in 270 and 280 FIRE steps against 275 (BENCHMARKS.md,
+/// "Issue 26: contact tracked from step to step").
 const TRACK_GAIN: f64 = 1e-6;
 
 /// The overlap energy of a pair whose bodies, scaled by `big_s`, overlap with gauge
