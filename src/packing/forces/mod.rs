@@ -286,10 +286,11 @@ impl Forces {
 }
 
 /// Pairs evaluated before their forces are added up: bounds the memory of the
-/// overlapping pairs' contributions (about 100 bytes each) whatever the scene's size.
-/// Two chunks' contributions are held at once (one tested while the other is added
-/// up): 2^17 keeps both within what one chunk of 2^18 held (1.44 GB peak on 1.17 M
-/// grains; 1.51 GB with two of 2^18).
+/// overlapping pairs' contributions (48 bytes each, 96 when grains turn) whatever the
+/// scene's size. Two chunks' contributions are held at once (one tested while the
+/// other is added up): 2^17 was chosen when a hit took 96 bytes for every scene, to
+/// keep both within what one chunk of 2^18 held (1.44 GB peak on 1.17 M grains then;
+/// 1.51 GB with two of 2^18).
 const CHUNK: usize = 1 << 17;
 
 #[cfg(test)]
