@@ -77,10 +77,11 @@ pub(crate) struct Forces {
 /// `1 + h/ρ`. A pair is skipped while that bound exceeds `S (1 + BOUND_SLACK)`; the
 /// slack covers the error of the μ₁ the narrow phase found (a lower bound to the
 /// rounding of one evaluation when tracked; the fast contact function's error, ≤ 1e-8
-/// relative even on the extreme reference set, otherwise) with room to spare. Multiplied out, with `T = S (1 + BOUND_SLACK)`:
-/// the pair is skipped while `t' + T h' ≤ (m − T) ρ + t + T h`, its grains' motions
-/// (travel plus `T` times sweep) summed now against then, which is what each pair
-/// stores (its allowance, in `f32` rounded down: a pair is only ever tested sooner).
+/// relative even on the extreme reference set, otherwise) with room to spare.
+/// Multiplied out, with `T = S (1 + BOUND_SLACK)`: the pair is skipped while
+/// `t' + T h' ≤ (m − T) ρ + t + T h`, its grains' motions (travel plus `T` times
+/// sweep) summed now against then, which is what each pair stores (its allowance, in
+/// `f32` rounded down: a pair is only ever tested sooner).
 pub const BOUND_SLACK: f64 = 1e-6;
 
 /// Added to every turn angle in the sweep of [`BOUND_SLACK`]'s bound, for the rounding
