@@ -19,6 +19,8 @@ pub(crate) struct Neighbours {
     anchors: Vec<[f64; 3]>,
     /// Builds so far.
     pub builds: u64,
+    /// The last build's tree, whose buffers the next build reuses.
+    tree: Option<Octree>,
 }
 
 impl Neighbours {
@@ -32,6 +34,7 @@ impl Neighbours {
             skin: 0.0,
             anchors: Vec::new(),
             builds: 0,
+            tree: None,
         }
     }
 
@@ -51,10 +54,17 @@ impl Neighbours {
             / state.len() as f64;
         self.skin = self.params.skin * scale * mean;
         state.spheres(scale, 0.5 * self.skin, &mut self.spheres);
-        let tree = Octree::build(&self.spheres, state.box_shape, self.params.octree)?;
+        let tree = match self.tree.take() {
+            Some(mut tree) if *tree.shape() == state.box_shape => {
+                tree.rebuild(&self.spheres)?;
+                tree
+            }
+            _ => Octree::build(&self.spheres, state.box_shape, self.params.octree)?,
+        };
         tree.pairs(&mut self.pairs);
         // A grain shorter than the box never meets its own image.
         self.pairs.retain(|p| p.i != p.j);
+        self.tree = Some(tree);
         self.built_scale = scale;
         self.anchors.clone_from(&state.centres);
         self.builds += 1;
