@@ -5,6 +5,8 @@
 #[cfg(doc)]
 use super::FireParams;
 use super::ProtocolParams;
+use crate::contact::Dimension;
+use crate::laws::{random_close_packing, random_close_packing_discs};
 use crate::scene::GrainSpec;
 
 /// How far past the scale of a jammed state a recompression cycle compresses it,
@@ -128,9 +130,12 @@ pub const MIN_CYCLE_EFFORT: f64 = 1.0 + 1.0 / CYCLES_PER_EFFORT;
 /// How far a shallow first jam is compressed, relatively to its scale, before the
 /// search: when the relaxation at the target (or at a scale it was compressed to) ends
 /// jammed but shallow (energy per grain below [`DEEP`](super::jamming::DEEP) times the
-/// margin's: just above its jamming point), the state is compressed by this much and
-/// relaxed again, until a relaxation ends deep (or [`QUENCH_LIMIT`]); the shallow jams
-/// set no bound on the search. Just above its jamming point, a relaxation from random
+/// margin's: just above its jamming point), the state is compressed by this much, and
+/// at once to at least [`DEEP_START`], and relaxed again, until a relaxation ends deep
+/// (or [`QUENCH_LIMIT`]); the shallow jams set no bound on the search. (Compressing by
+/// 2 % at a time, 10 000 frozen spheroids of aspect 1.5 asked 0.62 crept at 1.0 and
+/// 1.02 before jamming deep at 1.0404: 2 508–2 794 FIRE steps to the target; straight
+/// to 1.06, 1 504–1 505.) Just above its jamming point, a relaxation from random
 /// positions creeps for thousands of steps and leaves a state whose search jams low:
 /// 10 000 equal spheres at 0.66 took 4 000 steps to a plateau and their search found
 /// 0.6390, where from 0.70 (1.02 times the scale) the plateau came at 1 300 steps and
@@ -153,3 +158,61 @@ pub(super) const QUENCH_LIMIT: f64 = 1.0 + RECOMPRESSION;
 /// 0.62: 0.6168 in 1 262 steps, where the compression before the search reached 0.62
 /// in 2 400).
 pub(super) const QUENCH_MIN_EFFORT: f64 = 0.5;
+
+/// The scale of the first relaxation when the target lies near the jamming point (see
+/// [`first_scale`]): a fifth more packing fraction than the target's in 3D,
+/// so that the relaxation from random positions jams deep within a few hundred steps
+/// instead of creeping. The search then starts from that jam, and tries the target
+/// itself as soon as the bracket holds it (`tries_target`): relaxed from a state jammed
+/// that deep, the target clears in 60–600 steps. 10 000 grains at their jamming point,
+/// seeds 1 and 2, one thread (equal spheres asked 0.64, lognormal ones 0.657, frozen
+/// spheroids of aspect 1.5 0.62; BENCHMARKS.md, "Issue 27, sixth round"): 1.0404 took
+/// 953–4 251 FIRE steps, 1.06 671–4 004, where relaxing at the target first took
+/// 2 508–6 500; 1.02 1 596–4 956 (and one target missed).
+pub(super) const DEEP_START: f64 = 1.06;
+
+/// How close to the jamming point estimated for spheres of the grains' sizes (Farr and
+/// Groot's random close packing, `laws::random_close_packing`) a target must be for the
+/// first relaxation to start at [`DEEP_START`], as the ratio of the two fractions.
+/// Below it the relaxation at the target clears by itself in a few hundred steps (equal
+/// and lognormal spheres at 0.963 and 0.964 of the estimate: 602–969 FIRE steps); at
+/// 0.99 (equal spheres asked 0.64, lognormal ones 0.657) it creeps for thousands.
+pub(super) const NEAR_JAMMING: f64 = 0.97;
+
+/// The ratio (as for [`NEAR_JAMMING`]) from which a target is far enough above the
+/// jamming point that the relaxation there jams deep by itself, and starts at the
+/// target as before: at 1.026 (equal spheres and frozen spheroids of aspect 1.5 at
+/// full size 0.66) it crept for 1 000 steps, at 1.054 and 1.088 (lognormal and equal
+/// spheres at 0.70) it jammed deep in 900–1 500.
+pub(super) const FAR_ABOVE_JAMMING: f64 = 1.04;
+
+/// The scale of the first relaxation: [`DEEP_START`] when the grains at their target
+/// size, inflated by the gap, fill between [`NEAR_JAMMING`] and [`FAR_ABOVE_JAMMING`]
+/// of the random close packing of spheres (discs in 2D) of their equivalent diameters
+/// and `effort` lets the search start from a deep jam ([`QUENCH_MIN_EFFORT`]), else the
+/// target itself. `fraction` is the inflated grains' at the target size. Grains that
+/// turn (`turning`: not all spheres, and free to rotate) start at the target: they pack
+/// denser than spheres of their sizes (spheroids of aspect 1.5 near 0.70–0.716), so the
+/// estimate does not tell how near their jamming point is (kanapy's example, at 0.98 of
+/// it, clears at its target in 461 FIRE steps, and took 1 251 started deep).
+pub(super) fn first_scale(
+    specs: &[GrainSpec],
+    dimension: Dimension,
+    fraction: f64,
+    (effort, turning): (f64, bool),
+) -> f64 {
+    if effort < QUENCH_MIN_EFFORT || turning {
+        return 1.0;
+    }
+    let diameters: Vec<f64> = (specs.iter())
+        .map(|s| dimension.equivalent_diameter(s.semi_axes))
+        .collect();
+    let estimate = match dimension {
+        Dimension::Three => random_close_packing(&diameters),
+        Dimension::Two => random_close_packing_discs(&diameters),
+    };
+    match estimate.map(|e| fraction / e) {
+        Some(ratio) if (NEAR_JAMMING..FAR_ABOVE_JAMMING).contains(&ratio) => DEEP_START,
+        _ => 1.0,
+    }
+}

@@ -17,30 +17,28 @@
 //!    1 + [`contact_gap`](ProtocolParams::contact_gap)), or *stuck* when the energy per
 //!    grain has converged to a positive plateau (jammed: the test of `jamming.rs`);
 //! 4. the scale moves: the first trial is the target itself (`s = 1`, with a budget of
-//!    [`stage_steps`](ProtocolParams::stage_steps)); after a stuck relaxation the state
-//!    shrunk by its smallest μ is a clean state at once, and the scale is bisected
-//!    between the best clean scale and the smallest stuck one until they are within
-//!    `jam_resolution` (relative; a scene parameter), the target itself tried once as
-//!    soon as it lies between the clean end and the midpoint (`tries_target`). Near
-//!    the jamming point relaxations slow down without end (critical slowing down), so
-//!    each trial below the target has a budget of
-//!    [`trial_steps`](ProtocolParams::trial_steps) steps (times `effort`, a scene
-//!    parameter, when below 1), and one that runs out of it
-//!    counts as jammed at that scale (below `effort = 1`, so does the target's own
-//!    relaxation far above the jamming point, *deep*, after four such budgets). A
-//!    first jam that is *shallow* (the target just above the jamming point: the
-//!    relaxation from random positions creeps, and is cut
-//!    after [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by
-//!    the jamming test's patience) sets no bound (from `effort` 0.5 on; below, the
-//!    search starts from it): the state is compressed by 2 % of scale and relaxed
-//!    again until a jam is deep, and the search starts from there, so that a start
-//!    just above jamming costs and reaches about what one far above it does (`effort.rs`,
-//!    `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed state is then
-//!    compressed again well past its jamming point and the search repeated,
-//!    `⌊2 (effort − 1)⌋` times (recompression cycles, see `start_cycle`), keeping
-//!    the densest clean state: more effort buys density for time (with
-//!    `packing.unjam = "anneal"` a cycle is a slow compression with Monte Carlo moves
-//!    instead, module `unjam`);
+//!    [`stage_steps`](ProtocolParams::stage_steps)), or a scale well above it when the target lies
+//!    near the jamming point estimated for the grains' sizes (`effort.rs`, `first_scale`: a
+//!    relaxation from random positions there creeps); after a stuck relaxation the state shrunk by
+//!    its smallest μ is a clean state at once, and the scale is bisected between the best clean
+//!    scale and the smallest stuck one until they are within `jam_resolution` (relative; a scene
+//!    parameter), the target itself tried once as soon as it lies between the clean end and the
+//!    midpoint (`tries_target`). Near the jamming point relaxations slow down without end (critical
+//!    slowing down), so each trial below the target has a budget of
+//!    [`trial_steps`](ProtocolParams::trial_steps) steps (times `effort`, a scene parameter, when
+//!    below 1), and one that runs out of it counts as jammed at that scale (below `effort = 1`, so
+//!    does the target's own relaxation far above the jamming point, *deep*, after four such
+//!    budgets). A first jam that is *shallow* (the target just above the jamming point: the
+//!    relaxation from random positions creeps, and is cut after
+//!    [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by the jamming test's
+//!    patience) sets no bound (from `effort` 0.5 on; below, the search starts from it): the state
+//!    is compressed (to `DEEP_START`, then by 2 % of scale) and relaxed again until a jam is deep,
+//!    and the search starts from there, so that a start just above jamming costs and reaches about
+//!    what one far above it does (`effort.rs`, `QUENCH_STEP`). With `effort` ≥ 1.5, the jammed
+//!    state is then compressed again well past its jamming point and the search repeated, `⌊2
+//!    (effort − 1)⌋` times (recompression cycles, see `start_cycle`), keeping the densest clean
+//!    state: more effort buys density for time (with `packing.unjam = "anneal"` a cycle is a slow
+//!    compression with Monte Carlo moves instead, module `unjam`);
 //! 5. grains that may turn and reached the target are turned back toward their drawn
 //!    orientations (`restore`, a scene parameter): [`restore_steps`](ProtocolParams::restore_steps)
 //!    steps with a pull of stiffness [`restore_stiffness`](ProtocolParams::restore_stiffness)
@@ -81,8 +79,8 @@ pub use verify::{verify, MIN_GAP_REACH};
 
 use crate::scene::{Boundary, Rotation};
 use effort::{
-    deep_patience, recompression, recompression_cycles, start_cycle, trial_steps, CYCLE_WINDOW,
-    QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
+    deep_patience, first_scale, recompression, recompression_cycles, start_cycle, trial_steps,
+    CYCLE_WINDOW, DEEP_START, QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
 use fire::{Context, Fire};
 use jamming::Patience;
@@ -147,7 +145,9 @@ pub fn pack(
     // The best clean state (scale, centres, orientations) and the smallest stuck scale.
     let mut best: Option<Snapshot> = None;
     let mut stuck = f64::INFINITY;
-    let mut s = 1.0;
+    let inflated = state.fraction(1.0) * (1.0 + params.gap).powi(domain.dimension.exponent());
+    let turning = params.rotation != Rotation::None && !state.round.iter().all(|&r| r);
+    let mut s = first_scale(specs, domain.dimension, inflated, (params.effort, turning));
     // With a time limit, cycles go on until the time is up.
     let mut cycles_left = match params.time_limit {
         Some(_) => u32::MAX,
@@ -211,10 +211,11 @@ pub fn pack(
                 if best.as_ref().is_none_or(|b| b.scale < shrunk) {
                     best = Some(Snapshot::of(&state, shrunk));
                 }
-                // A shallow first jam is a poor start for the search: compress further.
+                // A shallow first jam is a poor start for the search: compress further,
+                // at once to where a jam is deep.
                 if quenching && !fire.deep && s < QUENCH_LIMIT && params.effort >= QUENCH_MIN_EFFORT
                 {
-                    s *= 1.0 + QUENCH_STEP;
+                    s = (s * (1.0 + QUENCH_STEP)).max(DEEP_START);
                     continue;
                 }
                 if !(guessed && outcome == Outcome::Budget) {
