@@ -116,7 +116,7 @@ fn shape_values(g: &PackedGrain, dimension: Dimension) -> Vec<f64> {
 /// Writes the grain table: [`grains_header`] then [`CRYSTAL_HEADER`], one row per grain
 /// (`crystals[i]` for `grains[i]`, from [`crystal_orientations`]) with integers for `id`
 /// and `phase` and 17 significant digits ([`format_17`]) for the rest, which read back
-/// to the same doubles. Rows are formatted in parallel, [`ROWS_PER_BATCH`] at a time,
+/// to the same doubles. Rows are formatted in parallel, `ROWS_PER_BATCH` at a time,
 /// and written in order: the same bytes as one row after the other.
 pub fn write_grains_csv(
     out: &mut dyn Write,
