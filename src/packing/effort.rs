@@ -6,8 +6,7 @@
 use super::FireParams;
 use super::ProtocolParams;
 use crate::contact::Dimension;
-use crate::laws::{random_close_packing, random_close_packing_discs};
-use crate::scene::GrainSpec;
+use crate::scene::{sphere_close_packing, GrainSpec};
 
 /// How far past the scale of a jammed state a recompression cycle compresses it,
 /// relatively: 0.1 of scale is a third more packing fraction (0.64 to 0.85 for
@@ -172,7 +171,7 @@ pub(super) const QUENCH_MIN_EFFORT: f64 = 0.5;
 pub(super) const DEEP_START: f64 = 1.06;
 
 /// How close to the jamming point estimated for spheres of the grains' sizes (Farr and
-/// Groot's random close packing, `laws::random_close_packing`) a target must be for the
+/// Groot's random close packing, [`sphere_close_packing`]) a target must be for the
 /// first relaxation to start at [`DEEP_START`], as the ratio of the two fractions.
 /// Below it the relaxation at the target clears by itself in a few hundred steps (equal
 /// and lognormal spheres at 0.963 and 0.964 of the estimate: 602–969 FIRE steps); at
@@ -204,14 +203,7 @@ pub(super) fn first_scale(
     if effort < QUENCH_MIN_EFFORT || turning {
         return 1.0;
     }
-    let diameters: Vec<f64> = (specs.iter())
-        .map(|s| dimension.equivalent_diameter(s.semi_axes))
-        .collect();
-    let estimate = match dimension {
-        Dimension::Three => random_close_packing(&diameters),
-        Dimension::Two => random_close_packing_discs(&diameters),
-    };
-    match estimate.map(|e| fraction / e) {
+    match sphere_close_packing(specs, dimension).map(|e| fraction / e) {
         Some(ratio) if (NEAR_JAMMING..FAR_ABOVE_JAMMING).contains(&ratio) => DEEP_START,
         _ => 1.0,
     }

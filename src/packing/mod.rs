@@ -390,3 +390,5 @@ fn interrupted(run: &Context<'_>) -> StopReason {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_schedule;

@@ -1,7 +1,7 @@
 //! The loop as a whole, on small scenes.
 
 use super::*;
-use crate::contact::{rotation_column, Dimension};
+use crate::contact::rotation_column;
 use crate::scene::{PackingParams, Rotation, Scene};
 
 /// 150 spheroids of aspect ratio 1.5 asked to fill 0.75 of a periodic cube: more than
@@ -22,7 +22,7 @@ fn dense_tilted() -> String {
         + r#"orientation = { kind = "tilt", axis = "z", mean = 90.0, kappa = 1.0, min = 0.0, max = 180.0 }"#
 }
 
-fn pack_scene(text: &str, rotation: Rotation) -> (Packing, Vec<GrainSpec>) {
+pub(super) fn pack_scene(text: &str, rotation: Rotation) -> (Packing, Vec<GrainSpec>) {
     pack_turning(text, rotation, std::f64::consts::PI)
 }
 
@@ -33,7 +33,7 @@ fn pack_turning(text: &str, rotation: Rotation, max_turn: f64) -> (Packing, Vec<
     })
 }
 
-fn pack_with(text: &str, set: impl Fn(&mut PackingParams)) -> (Packing, Vec<GrainSpec>) {
+pub(super) fn pack_with(text: &str, set: impl Fn(&mut PackingParams)) -> (Packing, Vec<GrainSpec>) {
     let mut scene = Scene::from_str(text, "test.toml").unwrap();
     set(&mut scene.packing);
     let specs = scene.sample_grains(&mut scene.rng()).unwrap();
@@ -91,18 +91,6 @@ fn the_trials_say_where_every_fire_step_went() {
     }
     let stuck = p.trials.iter().filter(|t| t.outcome != Outcome::Clean);
     assert!(stuck.count() >= 1);
-}
-
-/// Between a clean and a stuck scale, the bisection tries the target itself where the
-/// bracket holds it below its midpoint, and the midpoint otherwise.
-#[test]
-fn the_bisection_tries_the_target_where_its_bracket_holds_it_below_the_midpoint() {
-    assert!(tries_target(0.98, 1.04));
-    assert!(tries_target(0.99, 1.0404));
-    assert!(tries_target(0.98, f64::INFINITY));
-    assert!(!tries_target(0.98, 1.01));
-    assert!(!tries_target(0.9, 0.95));
-    assert!(!tries_target(1.0, 1.02));
 }
 
 #[track_caller]
@@ -271,52 +259,6 @@ fn the_contact_gap_asked_for_is_kept_between_every_pair() {
     );
 }
 
-/// 500 spheres asked for 0.63, below random close packing (0.64): the relaxation at
-/// the target is slow but not over. The window test this replaced (energy down 20 %
-/// per 100 steps) called it stuck after 1058 steps and ended jammed at 0.626; the
-/// plateau test lets it finish.
-#[test]
-fn a_slow_relaxation_below_jamming_is_not_called_jammed() {
-    let text = r#"
-seed = 5
-grains = 500
-[box]
-size = [14.9247, 14.9247, 14.9247]
-[[phase]]
-size = { distribution = "constant", value = 2.0 }
-"#;
-    let (p, _) = pack_scene(text, Rotation::None);
-    assert_eq!(p.stop, StopReason::TargetReached, "{}", p.fraction);
-    assert!(p.verification.is_clean(), "{:?}", p.verification);
-    assert!((p.fraction - 0.63).abs() < 1e-3, "{}", p.fraction);
-}
-
-/// The same scene with the seeds (of 1–8) whose relaxation at the target is slowest:
-/// a plateau under the floor counts as jammed only with a lasting overlap of a share
-/// of the resolution (`jamming::NEAR_CLEAN`), which a relaxation on its way to clean
-/// does not keep, so both still reach the target. The target (0.979 of the estimated
-/// jamming point) is now first relaxed at `DEEP_START` and reached from that jam (seed
-/// 4: 641 FIRE steps, seed 7: 714), in no more FIRE steps than the 5 616 and 3 892 the
-/// relaxation at the target took alone.
-#[test]
-fn a_plateau_near_clean_is_not_called_jammed_when_it_would_reach_the_target() {
-    for (seed, steps) in [(4, 5616), (7, 3892)] {
-        let text = format!(
-            "seed = {seed}\ngrains = 500\n[box]\nsize = [14.9247, 14.9247, 14.9247]\n\
-             [[phase]]\nsize = {{ distribution = \"constant\", value = 2.0 }}\n"
-        );
-        let (p, _) = pack_scene(&text, Rotation::None);
-
-        assert!(p.verification.is_clean(), "{:?}", p.verification);
-        assert_eq!(p.stop, StopReason::TargetReached, "{seed}: {}", p.fraction);
-        assert!(
-            p.counters.fire_steps <= steps,
-            "seed {seed}: {:?}",
-            p.counters
-        );
-    }
-}
-
 /// Recompression cycles (`effort` ≥ 1.5) start where the search at effort 1 ended and
 /// keep the densest clean state: never less dense, still clean, still jammed below
 /// the target, and the frozen orientations untouched.
@@ -388,36 +330,4 @@ fn slender_frozen_grains_recompress_deep_and_pack_denser() {
     for (g, s) in cycle.grains.iter().zip(&specs) {
         assert_eq!(g.quaternion, s.quaternion);
     }
-}
-
-/// A target near the jamming point estimated for its grains (here 0.979 of it) is first
-/// relaxed at `DEEP_START`, where a relaxation from random positions jams deep at once,
-/// and reached from that jam: 832 FIRE steps, where relaxing at the target first took
-/// 2 578 (BENCHMARKS.md, "Issue 27, sixth round"). Below `effort = 0.5`, and for a
-/// target clearly below the jamming point (0.93 of it), or grains that turn, the first
-/// trial is the target.
-#[test]
-fn a_target_near_the_jamming_point_is_first_relaxed_deep() {
-    let near = "seed = 5\ngrains = 500\n[box]\nsize = [14.9247, 14.9247, 14.9247]\n\
-                [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n";
-    let (p, specs) = pack_scene(near, Rotation::None);
-    assert_eq!(p.trials[0].scale, DEEP_START);
-    // Grains that turn pack denser than spheres: the estimate does not place them.
-    let fraction = p.fraction;
-    assert_eq!(
-        first_scale(&specs, Dimension::Three, fraction, (1.0, false)),
-        DEEP_START
-    );
-    assert_eq!(
-        first_scale(&specs, Dimension::Three, fraction, (1.0, true)),
-        1.0
-    );
-    assert_eq!(p.stop, StopReason::TargetReached, "{}", p.fraction);
-    assert!(p.verification.is_clean(), "{:?}", p.verification);
-    assert!(p.counters.fire_steps <= 1000, "{:?}", p.counters);
-    let (quick, _) = pack_with(near, |p| p.effort = 0.1);
-    assert_eq!(quick.trials[0].scale, 1.0);
-    let (below, _) = pack_scene(&near.replace("14.9247", "15.2"), Rotation::None);
-    assert_eq!(below.trials[0].scale, 1.0);
-    assert_eq!(below.stop, StopReason::TargetReached);
 }

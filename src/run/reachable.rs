@@ -3,8 +3,7 @@
 //! they can reach.
 
 use crate::contact::Dimension;
-use crate::laws::{random_close_packing, random_close_packing_discs};
-use crate::scene::{GrainCount, GrainSpec, Scene};
+use crate::scene::{sphere_close_packing, GrainCount, GrainSpec, Scene};
 use serde::Serialize;
 
 /// The drawn grains, before packing.
@@ -16,8 +15,8 @@ pub struct Drawn {
     pub requested_fraction: f64,
     /// The fraction the drawn grains fill at full size.
     pub drawn_fraction: f64,
-    /// The random close packing of spheres with the grains' equivalent diameters, by
-    /// Farr and Groot's one-dimensional model ([`random_close_packing`]): 0.6435 for
+    /// The random close packing of spheres with the grains' equivalent diameters
+    /// ([`sphere_close_packing`]: Farr and Groot's one-dimensional model), 0.6435 for
     /// equal spheres, more for spread sizes. Exact for spheres only: no model in the
     /// literature covers ellipsoids of any size law, orientation law and freedom to
     /// turn (spheroids of aspect 1.5 free to turn jam near 0.70–0.716, frozen or
@@ -28,7 +27,7 @@ pub struct Drawn {
     /// `1 + gap`, so the estimate is the inflated grains' divided by `(1 + gap)³`.
     ///
     /// In 2D, the random close packing of discs with the ellipses' equivalent-circle
-    /// diameters ([`random_close_packing_discs`]: 0.834 for equal discs, 0.842 for
+    /// diameters (0.834 for equal discs, 0.842 for
     /// O'Hern et al.'s bidisperse ones), divided by `(1 + gap)²`. Ellipses free to turn
     /// pack denser than discs (aspect 1.3–1.4: about 0.90, Delaney et al. 2005; Donev
     /// et al. 2007), so for them it is a floor, not a ceiling.
@@ -48,9 +47,6 @@ impl Drawn {
     pub fn of(scene: &Scene, specs: &[GrainSpec]) -> Self {
         let volume: f64 = specs.iter().map(GrainSpec::volume).sum();
         let dimension = scene.domain.dimension;
-        let diameters: Vec<f64> = (specs.iter())
-            .map(|s| dimension.equivalent_diameter(s.semi_axes))
-            .collect();
         Self {
             grains: specs.len(),
             requested_fraction: match scene.count {
@@ -58,11 +54,7 @@ impl Drawn {
                 GrainCount::Exactly(_) => scene.expected_fraction(),
             },
             drawn_fraction: volume / scene.domain.volume(),
-            reachable_fraction: match dimension {
-                Dimension::Three => random_close_packing(&diameters),
-                Dimension::Two => random_close_packing_discs(&diameters),
-            }
-            .unwrap_or(f64::NAN)
+            reachable_fraction: sphere_close_packing(specs, dimension).unwrap_or(f64::NAN)
                 / (1.0 + scene.packing.gap).powi(dimension.exponent()),
             spheres: (specs.iter()).all(|s| s.semi_axes.iter().all(|&a| a == s.semi_axes[0])),
             gap: scene.packing.gap,
