@@ -6,7 +6,7 @@
 use super::FireParams;
 use super::ProtocolParams;
 use crate::contact::Dimension;
-use crate::scene::{sphere_close_packing, GrainSpec};
+use crate::scene::{affine_slenderness, sphere_close_packing, GrainSpec};
 
 /// How far past the scale of a jammed state a recompression cycle compresses it,
 /// relatively: 0.1 of scale is a third more packing fraction (0.64 to 0.85 for
@@ -36,16 +36,20 @@ pub(super) const SLENDER: f64 = 4.0;
 /// The recompression of a cycle for these grains: [`DEEP_RECOMPRESSION`] if their
 /// mean slenderness is at least [`SLENDER`], else [`RECOMPRESSION`].
 pub(super) fn recompression(specs: &[GrainSpec]) -> f64 {
-    let slenderness = |s: &GrainSpec| {
-        let [a, b, c] = s.semi_axes;
-        a.max(b).max(c) / a.min(b).min(c)
-    };
-    let mean = specs.iter().map(slenderness).sum::<f64>() / specs.len().max(1) as f64;
-    if mean >= SLENDER {
+    if mean_slenderness(specs) >= SLENDER {
         DEEP_RECOMPRESSION
     } else {
         RECOMPRESSION
     }
+}
+
+/// The grains' mean slenderness: longest over shortest semi-axis, 1 for spheres.
+fn mean_slenderness(specs: &[GrainSpec]) -> f64 {
+    let slenderness = |s: &GrainSpec| {
+        let [a, b, c] = s.semi_axes;
+        a.max(b).max(c) / a.min(b).min(c)
+    };
+    specs.iter().map(slenderness).sum::<f64>() / specs.len().max(1) as f64
 }
 
 /// The first scale of a recompression cycle, from the jamming point `low` just found:
@@ -170,9 +174,10 @@ pub(super) const QUENCH_MIN_EFFORT: f64 = 0.5;
 /// 2 508–6 500; 1.02 1 596–4 956 (and one target missed).
 pub(super) const DEEP_START: f64 = 1.06;
 
-/// How close to the jamming point estimated for spheres of the grains' sizes (Farr and
-/// Groot's random close packing, [`sphere_close_packing`]) a target must be for the
-/// first relaxation to start at [`DEEP_START`], as the ratio of the two fractions.
+/// How close to the jamming point estimated for the grains (Farr and Groot's random
+/// close packing of spheres of their sizes, [`sphere_close_packing`], lowered for
+/// frozen non-spheres by [`frozen_share`]) a target must be for the first relaxation to
+/// start at [`DEEP_START`], as the ratio of the two fractions.
 /// Below it the relaxation at the target clears by itself in a few hundred steps (equal
 /// and lognormal spheres at 0.963 and 0.964 of the estimate: 602–969 FIRE steps); at
 /// 0.99 (equal spheres asked 0.64, lognormal ones 0.657) it creeps for thousands.
@@ -185,11 +190,32 @@ pub(super) const NEAR_JAMMING: f64 = 0.97;
 /// spheres at 0.70) it jammed deep in 900–1 500.
 pub(super) const FAR_ABOVE_JAMMING: f64 = 1.04;
 
+/// How much lower than spheres of their sizes grains that do not turn jam, per unit of
+/// slenderness above 1, the slenderness taken after the linear map that makes their
+/// mean shape round ([`affine_slenderness`]: aligned grains of one shape jam as spheres
+/// do): their jamming point is taken as the sphere estimate times
+/// `1 − FROZEN_JAMMING_SLOPE (s − 1)`, `s` up to [`SLENDER`]. 10 000 spheroids of aspect
+/// 1.5 turned at random and frozen jam at 0.630, 0.979 of the estimate 0.6435: a slope
+/// of 0.042 (BENCHMARKS.md, "Issues 26 and 27: ten million grains again").
+pub(super) const FROZEN_JAMMING_SLOPE: f64 = 0.042;
+
+/// The jamming point estimated for grains that do not turn, as a share of the random
+/// close packing of spheres of their sizes ([`FROZEN_JAMMING_SLOPE`]); 1 for spheres,
+/// and in 2D (not measured there).
+fn frozen_share(specs: &[GrainSpec], dimension: Dimension) -> f64 {
+    if dimension == Dimension::Two || mean_slenderness(specs) == 1.0 {
+        return 1.0;
+    }
+    1.0 - FROZEN_JAMMING_SLOPE * (affine_slenderness(specs).min(SLENDER) - 1.0)
+}
+
 /// The scale of the first relaxation: [`DEEP_START`] when the grains at their target
-/// size, inflated by the gap, fill between [`NEAR_JAMMING`] and [`FAR_ABOVE_JAMMING`]
-/// of the random close packing of spheres (discs in 2D) of their equivalent diameters
-/// and `effort` lets the search start from a deep jam ([`QUENCH_MIN_EFFORT`]), else the
-/// target itself. `fraction` is the inflated grains' at the target size. Grains that
+/// size, inflated by the gap, fill at least [`NEAR_JAMMING`] of their own estimated
+/// jamming point (the random close packing of spheres, discs in 2D, of their equivalent
+/// diameters, lowered for grains that do not turn by [`frozen_share`]) and less than
+/// [`FAR_ABOVE_JAMMING`] of the spheres' (frozen spheroids of aspect 1.5 at 1.048 of
+/// their own, full size 0.66, still creep at the target), and `effort` lets the search
+/// start from a deep jam ([`QUENCH_MIN_EFFORT`]); else the target itself. `fraction` is the inflated grains' at the target size. Grains that
 /// turn (`turning`: not all spheres, and free to rotate) start at the target: they pack
 /// denser than spheres of their sizes (spheroids of aspect 1.5 near 0.70–0.716), so the
 /// estimate does not tell how near their jamming point is (kanapy's example, at 0.98 of
@@ -203,8 +229,13 @@ pub(super) fn first_scale(
     if effort < QUENCH_MIN_EFFORT || turning {
         return 1.0;
     }
-    match sphere_close_packing(specs, dimension).map(|e| fraction / e) {
-        Some(ratio) if (NEAR_JAMMING..FAR_ABOVE_JAMMING).contains(&ratio) => DEEP_START,
-        _ => 1.0,
+    let Some(spheres) = sphere_close_packing(specs, dimension) else {
+        return 1.0;
+    };
+    let own = spheres * frozen_share(specs, dimension);
+    if fraction >= NEAR_JAMMING * own && fraction < FAR_ABOVE_JAMMING * spheres {
+        DEEP_START
+    } else {
+        1.0
     }
 }

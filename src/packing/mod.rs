@@ -18,8 +18,9 @@
 //!    grain has converged to a positive plateau (jammed: the test of `jamming.rs`);
 //! 4. the scale moves: the first trial is the target itself (`s = 1`, with a budget of
 //!    [`stage_steps`](ProtocolParams::stage_steps)), or a scale well above it when the target lies
-//!    near the jamming point estimated for the grains' sizes (`effort.rs`, `first_scale`: a
-//!    relaxation from random positions there creeps); after a stuck relaxation the state shrunk by
+//!    near the jamming point estimated for the grains (`effort.rs`, `first_scale`: a
+//!    relaxation from random positions there creeps; grains that do not turn jam lower
+//!    than spheres of their sizes unless aligned, `frozen_share`); after a stuck relaxation the state shrunk by
 //!    its smallest μ is a clean state at once, and the scale is bisected between the best clean
 //!    scale and the smallest stuck one until they are within `jam_resolution` (relative; a scene
 //!    parameter), the target itself tried once as soon as it lies between the clean end and the

@@ -4,7 +4,7 @@
 use super::tests::{pack_scene, pack_with};
 use super::*;
 use crate::contact::Dimension;
-use crate::scene::Rotation;
+use crate::scene::{Rotation, Scene};
 
 /// 500 equal spheres (diameter 2) in a periodic cube at 0.63, 0.979 of their estimated
 /// jamming point; a scene's `seed` line goes before it.
@@ -78,4 +78,35 @@ fn a_target_near_the_jamming_point_is_first_relaxed_deep() {
     let (below, _) = pack_scene(&near.replace("14.9247", "15.2"), Rotation::None);
     assert_eq!(below.trials[0].scale, 1.0);
     assert_eq!(below.stop, StopReason::TargetReached);
+}
+
+/// Grains that do not turn jam below spheres of their sizes when their orientations
+/// are spread (frozen spheroids of aspect 1.5: 0.630 against 0.6435), so a target of
+/// 0.62 (0.963 of the sphere estimate) is near their jamming point and starts deep;
+/// aligned ones jam as spheres do (a linear map of spheres) and start at the target, as
+/// spheres asked the same do.
+#[test]
+fn frozen_grains_start_deep_near_their_own_jamming_point_aligned_ones_as_spheres() {
+    let text = "seed = 1\ngrains = 2000\n[box]\nsize = [30.0, 30.0, 30.0]\n\
+                [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n\
+                aspect_ratio = { distribution = \"constant\", value = 1.5 }\n";
+    let scene = Scene::from_str(text, "test.toml").unwrap();
+    let turned = scene.sample_grains(&mut scene.rng()).unwrap();
+    let aligned: Vec<GrainSpec> = (turned.iter())
+        .map(|s| GrainSpec {
+            quaternion: [1.0, 0.0, 0.0, 0.0],
+            ..*s
+        })
+        .collect();
+    let spheres: Vec<GrainSpec> = (turned.iter())
+        .map(|s| GrainSpec::new(0, s.diameter, 1.0, s.quaternion, None))
+        .collect();
+    let first = |specs: &[GrainSpec], fraction| {
+        first_scale(specs, Dimension::Three, fraction, (1.0, false))
+    };
+    assert_eq!(first(&turned, 0.62), DEEP_START);
+    assert_eq!(first(&aligned, 0.62), 1.0);
+    assert_eq!(first(&spheres, 0.62), 1.0);
+    // Clearly below their jamming point, all start at the target.
+    assert_eq!(first(&turned, 0.60), 1.0);
 }

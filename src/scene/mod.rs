@@ -38,7 +38,7 @@ mod units;
 
 use crate::contact::Dimension;
 use crate::laws::Distribution;
-pub use close_packing::sphere_close_packing;
+pub use close_packing::{affine_slenderness, sphere_close_packing};
 pub use crystal::{
     euler_to_quaternion, fibre_angle, quaternion_to_euler, random_angle_cdf, rotate,
     rotation_angle, PhaseTexture, Texture,
