@@ -215,9 +215,9 @@ fn frozen_share(specs: &[GrainSpec], dimension: Dimension) -> f64 {
 /// diameters, lowered for grains that do not turn by [`frozen_share`]) and less than
 /// [`FAR_ABOVE_JAMMING`] of the spheres' (frozen spheroids of aspect 1.5 at 1.048 of
 /// their own, full size 0.66, still creep at the target), and `effort` lets the search
-/// start from a deep jam ([`QUENCH_MIN_EFFORT`]); else the target itself. `fraction` is the inflated grains' at the target size. Grains that
-/// turn (`turning`: not all spheres, and free to rotate) start at the target: they pack
-/// denser than spheres of their sizes (spheroids of aspect 1.5 near 0.70–0.716), so the
+/// start from a deep jam ([`QUENCH_MIN_EFFORT`]); else the target itself. `fraction` is
+/// the inflated grains' at the target size. Grains that turn (`turning`: not all
+/// spheres, and free to rotate) start at the target: they pack denser than spheres of their sizes (spheroids of aspect 1.5 near 0.70–0.716), so the
 /// estimate does not tell how near their jamming point is (kanapy's example, at 0.98 of
 /// it, clears at its target in 461 FIRE steps, and took 1 251 started deep).
 pub(super) fn first_scale(

@@ -32,8 +32,8 @@ const SHAPE_SAMPLE: usize = 4096;
 /// packing fraction and no overlap, so grains that do not turn jam as their mapped
 /// images do: aligned grains of one shape map to spheres (1 here), grains turned at
 /// random stay as slender as they are. Shapes are taken at unit volume (the form
-/// `R diag(a²) Rᵀ` over `(a₁a₂a₃)^{2/3}`), over the first 4 096 grains (`SHAPE_SAMPLE`). 1 for
-/// no grains or forms that are not finite and definite.
+/// `R diag(a²) Rᵀ` over `(a₁a₂a₃)^{2/3}`), over the first 4 096 grains
+/// (`SHAPE_SAMPLE`). 1 for no grains or forms that are not finite and definite.
 pub fn affine_slenderness(specs: &[GrainSpec]) -> f64 {
     let sample = &specs[..specs.len().min(SHAPE_SAMPLE)];
     let form = |s: &GrainSpec| {
@@ -42,20 +42,20 @@ pub fn affine_slenderness(specs: &[GrainSpec]) -> f64 {
         let unit = (a * b * c).powf(2.0 / 3.0);
         r * Matrix3::from_diagonal(&[a * a, b * b, c * c].into()) * r.transpose() / unit
     };
-    let mean = sample.iter().map(form).sum::<Matrix3<f64>>() / sample.len().max(1) as f64;
+    let forms: Vec<Matrix3<f64>> = sample.iter().map(form).collect();
+    let mean = forms.iter().sum::<Matrix3<f64>>() / forms.len().max(1) as f64;
     let eigen = SymmetricEigen::new(mean);
-    if sample.is_empty() || !eigen.eigenvalues.iter().all(|&l| l.is_finite() && l > 0.0) {
+    if forms.is_empty() || !eigen.eigenvalues.iter().all(|&l| l.is_finite() && l > 0.0) {
         return 1.0;
     }
     // mean^{-1/2}: the map that makes the mean form the identity.
     let root = eigen.eigenvalues.map(|l| 1.0 / l.sqrt());
     let map = eigen.eigenvectors * Matrix3::from_diagonal(&root) * eigen.eigenvectors.transpose();
-    let slenderness = |s: &GrainSpec| {
-        let l = SymmetricEigen::new(map * form(s) * map).eigenvalues;
+    let slenderness = |f: &Matrix3<f64>| {
+        let l = SymmetricEigen::new(map * f * map).eigenvalues;
         (l.max() / l.min()).sqrt()
     };
-    let total: f64 = sample.iter().map(slenderness).sum();
-    let mean = total / sample.len() as f64;
+    let mean = forms.iter().map(slenderness).sum::<f64>() / forms.len() as f64;
     if mean.is_finite() {
         mean
     } else {
