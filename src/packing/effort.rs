@@ -163,7 +163,7 @@ pub(super) const QUENCH_LIMIT: f64 = 1.0 + RECOMPRESSION;
 pub(super) const QUENCH_MIN_EFFORT: f64 = 0.5;
 
 /// The scale of the first relaxation when the target lies near the jamming point (see
-/// [`first_scale`]): a fifth more packing fraction than the target's in 3D,
+/// [`first_relaxation`]): a fifth more packing fraction than the target's in 3D,
 /// so that the relaxation from random positions jams deep within a few hundred steps
 /// instead of creeping. The search then starts from that jam, and tries the target
 /// itself as soon as the bracket holds it (`tries_target`): relaxed from a state jammed
@@ -209,33 +209,95 @@ fn frozen_share(specs: &[GrainSpec], dimension: Dimension) -> f64 {
     1.0 - FROZEN_JAMMING_SLOPE * (affine_slenderness(specs).min(SLENDER) - 1.0)
 }
 
-/// The scale of the first relaxation: [`DEEP_START`] when the grains at their target
-/// size, inflated by the gap, fill at least [`NEAR_JAMMING`] of their own estimated
-/// jamming point (the random close packing of spheres, discs in 2D, of their equivalent
+/// How far past the target the grains are first relaxed, for [`OVERSHOOT_STEPS`], when
+/// frozen grains are asked a target from [`NEAR_FROZEN_JAMMING`] to [`NEAR_JAMMING`] of
+/// their own estimated jamming point: 9 % more packing fraction, just past that point.
+/// There a relaxation from random positions is a slow collective release of a contact
+/// network that overlaps almost everywhere at the target (BENCHMARKS.md, "Issues 26 and
+/// 27: ten million grains again"); pushed past it for a while, the network opens
+/// faster once the target is relaxed. `benches/scale/hundred_thousand.toml` (frozen
+/// ellipsoids of aspect 1–2 at 0.925 of their own point), seed 1, two threads: 226
+/// FIRE steps (120 of them here) instead of 275, 1.04 218, 1.06 215 (but each step at
+/// 1.06 costs more: more contacts); frozen spheroids of aspect 1.5 at 0.60 (0.953)
+/// 239 instead of 376 (BENCHMARKS.md, "Issue 26: frozen grains overshoot").
+pub(super) const OVERSHOOT: f64 = 1.03;
+
+/// FIRE steps of the relaxation at [`OVERSHOOT`]. On hundred_thousand (seed 1) 90
+/// steps took 250 in all, 120 226, 150 219; on 10 000 frozen spheroids at 0.60 and 0.58,
+/// 80 took 341 and 187, 120 239 and 181, 160 240 and 204.
+pub(super) const OVERSHOOT_STEPS: u64 = 120;
+
+/// The least ratio of a frozen grains' target to their own estimated jamming point
+/// (as for [`NEAR_JAMMING`]) at which the first relaxation overshoots ([`OVERSHOOT`]).
+/// Further below it the relaxation at the target is short by itself: 10 000 frozen
+/// spheroids asked 0.55 (0.873) took 153 FIRE steps at the target and 143 with an
+/// overshoot, in the same time.
+pub(super) const NEAR_FROZEN_JAMMING: f64 = 0.9;
+
+/// How a packing's first relaxation goes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct First {
+    /// Its scale.
+    pub scale: f64,
+    /// `Some(n)`: it is relaxed for at most `n` FIRE steps and the target relaxed next,
+    /// whatever it reached ([`OVERSHOOT`]); `None`: it is the search's first trial.
+    pub steps: Option<u64>,
+}
+
+impl First {
+    pub(super) const TARGET: Self = Self {
+        scale: 1.0,
+        steps: None,
+    };
+}
+
+/// The first relaxation: at [`DEEP_START`] when the grains at their target size,
+/// inflated by the gap, fill at least [`NEAR_JAMMING`] of their own estimated jamming
+/// point (the random close packing of spheres, discs in 2D, of their equivalent
 /// diameters, lowered for grains that do not turn by [`frozen_share`]) and less than
 /// [`FAR_ABOVE_JAMMING`] of the spheres' (frozen spheroids of aspect 1.5 at 1.048 of
 /// their own, full size 0.66, still creep at the target), and `effort` lets the search
-/// start from a deep jam ([`QUENCH_MIN_EFFORT`]); else the target itself. `fraction` is
-/// the inflated grains' at the target size. Grains that turn (`turning`: not all
-/// spheres, and free to rotate) start at the target: they pack denser than spheres of their sizes (spheroids of aspect 1.5 near 0.70–0.716), so the
-/// estimate does not tell how near their jamming point is (kanapy's example, at 0.98 of
-/// it, clears at its target in 461 FIRE steps, and took 1 251 started deep).
-pub(super) fn first_scale(
+/// start from a deep jam ([`QUENCH_MIN_EFFORT`]); at [`OVERSHOOT`] for a while when
+/// frozen non-spheres fill from [`NEAR_FROZEN_JAMMING`] to [`NEAR_JAMMING`] of theirs;
+/// else at the target itself. `fraction` is the inflated grains' at the target size.
+/// Grains that turn (`turning`: not all spheres, and free to rotate) start at the
+/// target: they pack denser than spheres of their sizes (spheroids of aspect 1.5 near
+/// 0.70–0.716), so the estimate does not tell how near their jamming point is
+/// (kanapy's example, at 0.98 of it, clears at its target in 461 FIRE steps, and took
+/// 1 251 started deep).
+pub(super) fn first_relaxation(
     specs: &[GrainSpec],
     dimension: Dimension,
     fraction: f64,
     (effort, turning): (f64, bool),
-) -> f64 {
-    if effort < QUENCH_MIN_EFFORT || turning {
-        return 1.0;
-    }
-    let Some(spheres) = sphere_close_packing(specs, dimension) else {
-        return 1.0;
+) -> First {
+    let Some(spheres) = sphere_close_packing(specs, dimension).filter(|_| !turning) else {
+        return First::TARGET;
     };
     let own = spheres * frozen_share(specs, dimension);
-    if fraction >= NEAR_JAMMING * own && fraction < FAR_ABOVE_JAMMING * spheres {
-        DEEP_START
+    if fraction >= NEAR_JAMMING * own {
+        let deep = effort >= QUENCH_MIN_EFFORT && fraction < FAR_ABOVE_JAMMING * spheres;
+        let scale = if deep { DEEP_START } else { 1.0 };
+        First { scale, steps: None }
+    } else if own < spheres && fraction >= NEAR_FROZEN_JAMMING * own {
+        First {
+            scale: OVERSHOOT,
+            steps: Some(OVERSHOOT_STEPS),
+        }
     } else {
-        1.0
+        First::TARGET
     }
+}
+
+/// Whether the bisection between the densest clean scale `low` and the smallest stuck
+/// one `stuck` should try the target (scale 1) instead of their midpoint: where it lies
+/// between `low` and the midpoint. The loop does so once: a clean relaxation there
+/// ends the run (a target just below the jamming point is then reached without the
+/// bisection narrowing down to it); one jammed on a plateau bounds the search as any
+/// trial; one that runs out of steps bounds nothing: from a state jammed far above the
+/// target, one trial there may run out of steps where the bisection's smaller steps
+/// reach it (lognormal spheres at full size 0.659, seed 2: BENCHMARKS.md, "Issue 27,
+/// fifth round"), and the bisection goes on from its midpoint.
+pub(super) fn tries_target(low: f64, stuck: f64) -> bool {
+    low < 1.0 && 1.0 < 0.5 * (low + stuck)
 }

@@ -18,9 +18,10 @@
 //!    grain has converged to a positive plateau (jammed: the test of `jamming.rs`);
 //! 4. the scale moves: the first trial is the target itself (`s = 1`, with a budget of
 //!    [`stage_steps`](ProtocolParams::stage_steps)), or a scale well above it when the target lies
-//!    near the jamming point estimated for the grains (`effort.rs`, `first_scale`: a
+//!    near the jamming point estimated for the grains (`effort.rs`, `first_relaxation`: a
 //!    relaxation from random positions there creeps; grains that do not turn jam lower
-//!    than spheres of their sizes unless aligned, `frozen_share`); after a stuck relaxation the state shrunk by
+//!    than spheres of their sizes unless aligned, `frozen_share`; frozen grains a little below
+//!    theirs are first pushed past it for a while, `OVERSHOOT`); after a stuck relaxation the state shrunk by
 //!    its smallest μ is a clean state at once, and the scale is bisected between the best clean
 //!    scale and the smallest stuck one until they are within `jam_resolution` (relative; a scene
 //!    parameter), the target itself tried once as soon as it lies between the clean end and the
@@ -80,8 +81,8 @@ pub use verify::{verify, MIN_GAP_REACH};
 
 use crate::scene::{Boundary, Rotation};
 use effort::{
-    deep_patience, first_scale, recompression, recompression_cycles, start_cycle, trial_steps,
-    CYCLE_WINDOW, DEEP_START, QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
+    deep_patience, first_relaxation, recompression, recompression_cycles, start_cycle, trial_steps,
+    tries_target, CYCLE_WINDOW, DEEP_START, QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
 use fire::{Context, Fire};
 use jamming::Patience;
@@ -148,7 +149,9 @@ pub fn pack(
     let mut stuck = f64::INFINITY;
     let inflated = state.fraction(1.0) * (1.0 + params.gap).powi(domain.dimension.exponent());
     let turning = params.rotation != Rotation::None && !state.round.iter().all(|&r| r);
-    let mut s = first_scale(specs, domain.dimension, inflated, (params.effort, turning));
+    let first = first_relaxation(specs, domain.dimension, inflated, (params.effort, turning));
+    // The overshoot's step cap (`effort::OVERSHOOT`), until it has been relaxed.
+    let (mut s, mut overshoot) = (first.scale, first.steps);
     // With a time limit, cycles go on until the time is up.
     let mut cycles_left = match params.time_limit {
         Some(_) => u32::MAX,
@@ -194,7 +197,7 @@ pub fn pack(
             &mut run,
             s,
             s * (1.0 + protocol.margin),
-            left.min(budget),
+            left.min(budget).min(overshoot.unwrap_or(u64::MAX)),
         )?;
         trials.push(Trial {
             scale: s,
@@ -204,6 +207,10 @@ pub fn pack(
             energy_per_grain: run.forces.energy / state.len() as f64,
         });
         let guessed = std::mem::take(&mut guess);
+        if overshoot.take().is_some() && matches!(outcome, Outcome::Stuck | Outcome::Budget) {
+            s = 1.0;
+            continue;
+        }
         match outcome {
             Outcome::Interrupted => break interrupted(&run),
             Outcome::Clean => best = Some(Snapshot::of(&state, s.min(1.0))),
@@ -365,19 +372,6 @@ fn turn_back(
     let left = (budget - steps).min(protocol.stage_steps);
     let settled = fire.relax(state, run, s, big_s, left)?;
     Ok((settled == Outcome::Clean).then(|| Snapshot::of(state, s)))
-}
-
-/// Whether the bisection between the densest clean scale `low` and the smallest stuck
-/// one `stuck` should try the target (scale 1) instead of their midpoint: where it lies
-/// between `low` and the midpoint. The loop does so once: a clean relaxation there
-/// ends the run (a target just below the jamming point is then reached without the
-/// bisection narrowing down to it); one jammed on a plateau bounds the search as any
-/// trial; one that runs out of steps bounds nothing: from a state jammed far above the
-/// target, one trial there may run out of steps where the bisection's smaller steps
-/// reach it (lognormal spheres at full size 0.659, seed 2: BENCHMARKS.md, "Issue 27,
-/// fifth round"), and the bisection goes on from its midpoint.
-fn tries_target(low: f64, stuck: f64) -> bool {
-    low < 1.0 && 1.0 < 0.5 * (low + stuck)
 }
 
 /// Why a relaxation stopped early: the time limit if it has run out, else the caller.

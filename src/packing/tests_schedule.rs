@@ -61,14 +61,9 @@ fn a_target_near_the_jamming_point_is_first_relaxed_deep() {
     assert_eq!(p.trials[0].scale, DEEP_START);
     // Grains that turn pack denser than spheres: the estimate does not place them.
     let fraction = p.fraction;
-    assert_eq!(
-        first_scale(&specs, Dimension::Three, fraction, (1.0, false)),
-        DEEP_START
-    );
-    assert_eq!(
-        first_scale(&specs, Dimension::Three, fraction, (1.0, true)),
-        1.0
-    );
+    let first = |turning| first_relaxation(&specs, Dimension::Three, fraction, (1.0, turning));
+    assert_eq!(first(false).scale, DEEP_START);
+    assert_eq!(first(true).scale, 1.0);
     assert_eq!(p.stop, StopReason::TargetReached, "{}", p.fraction);
     assert!((p.fraction - 0.63).abs() < 1e-3, "{}", p.fraction);
     assert!(p.verification.is_clean(), "{:?}", p.verification);
@@ -84,7 +79,8 @@ fn a_target_near_the_jamming_point_is_first_relaxed_deep() {
 /// are spread (frozen spheroids of aspect 1.5: 0.630 against 0.6435), so a target of
 /// 0.62 (0.963 of the sphere estimate) is near their jamming point and starts deep;
 /// aligned ones jam as spheres do (a linear map of spheres) and start at the target, as
-/// spheres asked the same do.
+/// spheres asked the same do. At 0.60, a little further below their own point, the
+/// turned ones are first pushed past it for a while ([`effort::OVERSHOOT`]).
 #[test]
 fn frozen_grains_start_deep_near_their_own_jamming_point_aligned_ones_as_spheres() {
     let text = "seed = 1\ngrains = 2000\n[box]\nsize = [30.0, 30.0, 30.0]\n\
@@ -102,11 +98,39 @@ fn frozen_grains_start_deep_near_their_own_jamming_point_aligned_ones_as_spheres
         .map(|s| GrainSpec::new(0, s.diameter, 1.0, s.quaternion, None))
         .collect();
     let first = |specs: &[GrainSpec], fraction| {
-        first_scale(specs, Dimension::Three, fraction, (1.0, false))
+        first_relaxation(specs, Dimension::Three, fraction, (1.0, false))
     };
-    assert_eq!(first(&turned, 0.62), DEEP_START);
-    assert_eq!(first(&aligned, 0.62), 1.0);
-    assert_eq!(first(&spheres, 0.62), 1.0);
+    let (target, deep) = (effort::First::TARGET, DEEP_START);
+    assert_eq!(
+        (first(&turned, 0.62).scale, first(&turned, 0.62).steps),
+        (deep, None)
+    );
+    assert_eq!(first(&aligned, 0.62), target);
+    assert_eq!(first(&spheres, 0.62), target);
+    let overshoot = effort::First {
+        scale: effort::OVERSHOOT,
+        steps: Some(effort::OVERSHOOT_STEPS),
+    };
+    assert_eq!(first(&turned, 0.60), overshoot);
+    assert_eq!(first(&aligned, 0.60), target);
+    assert_eq!(first(&spheres, 0.60), target);
     // Clearly below their jamming point, all start at the target.
-    assert_eq!(first(&turned, 0.60), 1.0);
+    assert_eq!(first(&turned, 0.55), target);
+}
+
+/// Frozen spheroids asked 0.60 (0.95 of their own jamming point) relax past it for
+/// [`effort::OVERSHOOT_STEPS`] and then at the target, which they reach overlap-free.
+#[test]
+fn frozen_grains_a_little_below_their_jamming_point_overshoot_then_reach_the_target() {
+    let text = "seed = 2\ngrains = 600\n[box]\nsize = [16.1199, 16.1199, 16.1199]\n\
+                [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n\
+                aspect_ratio = { distribution = \"constant\", value = 1.5 }\n";
+    let (p, _) = pack_scene(text, Rotation::None);
+    let first = &p.trials[0];
+    assert_eq!(first.scale, effort::OVERSHOOT, "{:?}", p.trials);
+    assert!(first.fire_steps <= effort::OVERSHOOT_STEPS, "{first:?}");
+    assert_eq!(p.trials[1].scale, 1.0, "{:?}", p.trials);
+    assert_eq!(p.stop, StopReason::TargetReached, "{}", p.fraction);
+    assert!((p.fraction - 0.60).abs() < 1e-3, "{}", p.fraction);
+    assert!(p.verification.is_clean(), "{:?}", p.verification);
 }
