@@ -1,8 +1,6 @@
 //! Drawing grains from a scene: which phase, what size, what shape, which way round.
 
-use super::{
-    triaxial_semi_axes, GrainCount, Measured, MeasuredGrain, Orientation, Phase, Scene, MAX_GRAINS,
-};
+use super::{triaxial_semi_axes, GrainCount, Orientation, Phase, Scene, MAX_GRAINS};
 use crate::contact::{ellipse_quaternion, ellipse_semi_axes, Dimension, PLANE_NORMAL};
 use crate::laws::MAX_DRAWS;
 use rand::{Rng, SeedableRng};
@@ -202,74 +200,6 @@ impl Phase {
     }
 }
 
-impl Phase {
-    /// The grain of this phase made from measured grain `g`: its semi-axes and
-    /// orientation where the table gives them, else drawn from the phase's laws (in
-    /// the order of [`Phase::sample_grain`]: shape, then orientation).
-    pub(crate) fn measured_grain<R: Rng + ?Sized>(
-        &self,
-        index: usize,
-        g: &MeasuredGrain,
-        rng: &mut R,
-    ) -> Option<GrainSpec> {
-        let mut spec = match g.semi_axes {
-            Some(axes) => GrainSpec {
-                semi_axes: axes,
-                aspect_ratio: axes[0] / axes[1],
-                ..GrainSpec::new(index, g.diameter, 1.0, [1.0, 0.0, 0.0, 0.0], None)
-            },
-            None => {
-                // The shape law at the measured diameter.
-                let mut shape_only = self.clone();
-                shape_only.measured = None;
-                shape_only.size = crate::laws::Distribution::Constant { value: g.diameter };
-                shape_only.orientation = Orientation::Fixed {
-                    quaternion: [1.0, 0.0, 0.0, 0.0],
-                };
-                shape_only.sample_grain(index, rng).ok()?
-            }
-        };
-        if let Some(c) = g.crystal {
-            spec.crystal = c;
-        }
-        if self.dimension == Dimension::Two {
-            // The table's semi-axes and quaternion are already an ellipse's, about z.
-            let (q, tilt) = match g.quaternion {
-                Some(q) => (q, None),
-                None => {
-                    let (theta, tilt) = self.orientation.sample_angle(rng)?;
-                    (ellipse_quaternion(theta), tilt)
-                }
-            };
-            spec.quaternion = q;
-            spec.tilt = tilt;
-            spec.dimension = Dimension::Two;
-            spec.turn_axis = Some(PLANE_NORMAL);
-            return Some(spec);
-        }
-        let (q, tilt) = match g.quaternion {
-            Some(q) => (q, None),
-            None => self.orientation.sample(rng)?,
-        };
-        spec.quaternion = q;
-        spec.tilt = tilt;
-        spec.turn_axis = turn_axis(&self.orientation, q);
-        Some(spec)
-    }
-
-    /// Draws one grain of a `draw` table: a row uniformly at random, then
-    /// [`Phase::measured_grain`].
-    pub(crate) fn draw_measured<R: Rng + ?Sized>(
-        &self,
-        index: usize,
-        measured: &Measured,
-        rng: &mut R,
-    ) -> Option<GrainSpec> {
-        let row = rng.random_range(0..measured.grains.len());
-        self.measured_grain(index, &measured.grains[row], rng)
-    }
-}
-
 impl Scene {
     /// The grains of the phases that take exactly their measured grains: each such
     /// phase's rows in table order, phase after phase (empty for a scene without).
@@ -386,7 +316,7 @@ impl Scene {
 /// The axis a grain of orientation `q` may turn about under `rotation = "axis"`: a
 /// tilt phase's tilt axis (the tilt angle changes); a `fisher` phase's grain its own
 /// first axis (only the spin changes, so the law of the first axis is kept).
-fn turn_axis(orientation: &Orientation, q: [f64; 4]) -> Option<[f64; 3]> {
+pub(super) fn turn_axis(orientation: &Orientation, q: [f64; 4]) -> Option<[f64; 3]> {
     match orientation {
         Orientation::Tilt { axis, .. } => Some(axis.unit()),
         Orientation::Fisher(_) => Some(crate::contact::rotation_column(q, 0)),
