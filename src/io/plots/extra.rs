@@ -4,8 +4,9 @@
 //! KS distances `summary.json` reports, put in the legends of every panel (taken from
 //! the run's statistics, not computed again).
 
+use super::angles::axis_polar_angle;
 use super::cdf::CdfPanel;
-use super::panel::{axis_polar_angle, Panel, Row};
+use super::panel::{Panel, Row};
 use super::target::{
     curve, distribution_target, histogram_curve, law_moments, law_name, tilt_curve_window, Target,
 };

@@ -33,6 +33,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod angles;
 mod cdf;
 mod draw;
 mod extra;
@@ -44,12 +45,12 @@ mod poles;
 mod target;
 mod texture;
 
+pub use angles::axis_polar_angle;
 pub use histogram::{aligned_bins, freedman_diaconis_bins, Histogram, MAX_BINS, MIN_BINS};
 pub use packing::{
     packing_png_size, phase_colour, render_packing_png, PACKING_PNG_LONG_SIDE, PACKING_PNG_MARGIN,
     PACKING_PNG_TITLE_HEIGHT,
 };
-pub use panel::axis_polar_angle;
 pub use poles::{equal_area, render_pole_figures_png};
 
 use crate::contact::Dimension;
