@@ -15,6 +15,7 @@ use super::refine::{refined_ldl, Refined, Refiner};
 use super::scale::{needs_no_rescaling, offset_in_safe_range, Prepared};
 use super::sym::PencilParts;
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
+use std::hint::select_unpredictable;
 
 /// Iteration cap. Bisection alone shrinks the bracket below one ulp of 1 in 53 steps,
 /// so hitting 64 means the residual is not behaving (non-finite or inconsistent signs).
@@ -298,16 +299,14 @@ fn predict_with(
                 what: "the derivatives of ln f(λ)",
             });
         }
-        if d1 > 0.0 {
-            lo = t;
-        } else if d1 < 0.0 {
-            hi = t;
-        }
+        // The sign of d1 is a coin toss from pair to pair: selects, not branches.
+        lo = select_unpredictable(d1 > 0.0, t, lo);
+        hi = select_unpredictable(d1 < 0.0, t, hi);
         // φ is concave: φ″ < 0 unless rounding flattened it.
         let curvature = -d2;
         let halley_denominator = 2.0 * d2 * d2 - d1 * d3;
         let halley = t - 2.0 * d1 * d2 * p / halley_denominator;
-        let halley_ok = halley_denominator > 0.0 && halley >= lo && halley <= hi;
+        let halley_ok = (halley_denominator > 0.0) & (halley >= lo) & (halley <= hi);
         let next = if halley_ok {
             halley
         } else {
@@ -321,15 +320,16 @@ fn predict_with(
         // The Newton model's gain in φ, φ′²/(2|φ″|) = D1²/(2|D2|), is the relative gain
         // in f still to come.
         let gain2 = d1 * d1; // 2 |D2| × gain
-        let converged = d1 == 0.0
-            || (curvature > 0.0
-                && (gain2 <= 2.0 * GAIN_TOL * curvature
-                    || (halley_ok
-                        && gain2 <= 2.0 * switch * curvature
-                        && (!remainder || step_leaves_little(d1, d2, d3)))));
-        let stalled = next == t || hi - lo <= f64::EPSILON * hi;
+                             // Non-short-circuit `|` and `&`: one branch, where each test was one.
+        let converged = (d1 == 0.0)
+            | ((curvature > 0.0)
+                & ((gain2 <= 2.0 * GAIN_TOL * curvature)
+                    | (halley_ok
+                        & (gain2 <= 2.0 * switch * curvature)
+                        & (!remainder || step_leaves_little(d1, d2, d3)))));
+        let stalled = (next == t) | (hi - lo <= f64::EPSILON * hi);
         t = next;
-        if converged || stalled {
+        if converged | stalled {
             return Ok((t, Stop::Converged, iterations));
         }
     }
