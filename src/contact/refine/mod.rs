@@ -122,7 +122,7 @@ impl<T: Arith> Start<T> {
 impl<'a> Refiner<'a> {
     #[inline(always)]
     pub fn new(p: &'a Prepared, parts: &'a PencilParts, rational: &'a Rational) -> Self {
-        let inv_unit = 1.0 / rational.det_unit();
+        let inv_unit = rational.inv_det_unit();
         let start = Start::new(&p.l1, &p.l2, &p.r, &p.q1, &p.q2, &parts.mixed, inv_unit);
         Self {
             p,
