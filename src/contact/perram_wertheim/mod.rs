@@ -320,7 +320,8 @@ fn predict_with(
         // The Newton model's gain in φ, φ′²/(2|φ″|) = D1²/(2|D2|), is the relative gain
         // in f still to come.
         let gain2 = d1 * d1; // 2 |D2| × gain
-                             // Non-short-circuit `|` and `&`: one branch, where each test was one.
+
+        // `|` and `&`, not `||` and `&&`: the compiler need not branch on each test.
         let converged = (d1 == 0.0)
             | ((curvature > 0.0)
                 & ((gain2 <= 2.0 * GAIN_TOL * curvature)

@@ -214,7 +214,7 @@ fn scaled_residual<T: Arith>(
     [row(0), row(1), row(2)]
 }
 
-/// Row `i` of [`scaled_residual`], `k` the entries of `Q(λ)` in that row.
+/// One row of [`scaled_residual`]: `ri` its entry of `r`, `k` the entries of `Q(λ)` in it.
 #[inline(always)]
 fn residual_row<T: Arith>(
     beta: T,
