@@ -108,9 +108,15 @@ impl Rational {
     }
 
     /// The power of two taken out of the coefficients of `b`.
-    #[inline(always)]
+    #[cfg(test)]
     pub fn det_unit(&self) -> f64 {
         pow2(self.b_exp)
+    }
+
+    /// `1 / det_unit`, exactly (a power of two in the normal range), without a division.
+    #[inline(always)]
+    pub fn inv_det_unit(&self) -> f64 {
+        pow2(-self.b_exp)
     }
 
     /// `φ′`, `φ″` and `φ‴` multiplied by `P`, `P²`, `P³` (see [`Halley`]), or `None`

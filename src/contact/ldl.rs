@@ -44,6 +44,17 @@ impl Ldl {
         }
     }
 
+    /// The factors of `q` and whether [`Ldl::factor`] accepts them, without its
+    /// `Result`: on the contact function's common path that went through memory, and
+    /// reading it back stalled on store forwarding.
+    #[inline(always)]
+    pub fn factor_flagged(q: &Sym3) -> (Self, bool) {
+        let floor = pivot_floor(q);
+        let l = Self::unchecked(q);
+        let [d0, d1, d2] = l.d;
+        (l, (d0 > floor) & (d1 > floor) & (d2 > floor))
+    }
+
     /// The factors of `s Q`: `L` is unchanged, the pivots scale by `s`.
     #[inline(always)]
     pub fn scaled(&self, s: f64) -> Self {

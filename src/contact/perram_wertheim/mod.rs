@@ -15,6 +15,7 @@ use super::refine::{refined_ldl, Refined, Refiner};
 use super::scale::{needs_no_rescaling, offset_in_safe_range, Prepared};
 use super::sym::PencilParts;
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
+use std::hint::select_unpredictable;
 
 /// Iteration cap. Bisection alone shrinks the bracket below one ulp of 1 in 53 steps,
 /// so hitting 64 means the residual is not behaving (non-finite or inconsistent signs).
@@ -160,7 +161,8 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
 #[inline(always)]
 fn solve_in(r12: &Vec3, q1: &Sym3, q2: &Sym3, mode: Mode) -> Result<Contact, ContactError> {
     if needs_no_rescaling(r12, q1, q2) && *r12 != [0.0; 3] {
-        if let (Ok(l1), Ok(l2)) = (Ldl::factor(q1), Ldl::factor(q2)) {
+        let ((l1, ok1), (l2, ok2)) = (Ldl::factor_flagged(q1), Ldl::factor_flagged(q2));
+        if ok1 & ok2 {
             // Built here rather than returned in an `Option`, which costs a copy.
             let p = Prepared::unscaled(r12, q1, q2, l1, l2);
             return solve_prepared(&p, mode, (r12, q1, q2));
@@ -297,16 +299,14 @@ fn predict_with(
                 what: "the derivatives of ln f(λ)",
             });
         }
-        if d1 > 0.0 {
-            lo = t;
-        } else if d1 < 0.0 {
-            hi = t;
-        }
+        // The sign of d1 is a coin toss from pair to pair: selects, not branches.
+        lo = select_unpredictable(d1 > 0.0, t, lo);
+        hi = select_unpredictable(d1 < 0.0, t, hi);
         // φ is concave: φ″ < 0 unless rounding flattened it.
         let curvature = -d2;
         let halley_denominator = 2.0 * d2 * d2 - d1 * d3;
         let halley = t - 2.0 * d1 * d2 * p / halley_denominator;
-        let halley_ok = halley_denominator > 0.0 && halley >= lo && halley <= hi;
+        let halley_ok = (halley_denominator > 0.0) & (halley >= lo) & (halley <= hi);
         let next = if halley_ok {
             halley
         } else {
@@ -320,15 +320,17 @@ fn predict_with(
         // The Newton model's gain in φ, φ′²/(2|φ″|) = D1²/(2|D2|), is the relative gain
         // in f still to come.
         let gain2 = d1 * d1; // 2 |D2| × gain
-        let converged = d1 == 0.0
-            || (curvature > 0.0
-                && (gain2 <= 2.0 * GAIN_TOL * curvature
-                    || (halley_ok
-                        && gain2 <= 2.0 * switch * curvature
-                        && (!remainder || step_leaves_little(d1, d2, d3)))));
-        let stalled = next == t || hi - lo <= f64::EPSILON * hi;
+
+        // `|` and `&`, not `||` and `&&`: the compiler need not branch on each test.
+        let converged = (d1 == 0.0)
+            | ((curvature > 0.0)
+                & ((gain2 <= 2.0 * GAIN_TOL * curvature)
+                    | (halley_ok
+                        & (gain2 <= 2.0 * switch * curvature)
+                        & (!remainder || step_leaves_little(d1, d2, d3)))));
+        let stalled = (next == t) | (hi - lo <= f64::EPSILON * hi);
         t = next;
-        if converged || stalled {
+        if converged | stalled {
             return Ok((t, Stop::Converged, iterations));
         }
     }

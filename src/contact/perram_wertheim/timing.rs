@@ -125,3 +125,62 @@ fn batch_against_scalar() {
         );
     }
 }
+
+/// [`split_of_the_cost`] with each call's `r12` depending on the previous call's result
+/// (through `0 · (μ² + λ)`, the same value), so that calls cannot overlap: the latency
+/// of each stage. Equal to the independent times within a few ns (2026-11-27, AMD EPYC):
+/// the call is bound by its chain of dependent operations, not by throughput.
+#[test]
+#[ignore]
+fn chained_split_of_the_cost() {
+    let cases = typical_cases();
+    let shifted = |c: &Case, carry: f64| [c.r12[0] + carry, c.r12[1], c.r12[2]];
+    let setup = |c: &Case, carry: f64| {
+        let r = shifted(c, carry);
+        let (l1, l2) = (Ldl::factor(&c.q1).unwrap(), Ldl::factor(&c.q2).unwrap());
+        let p = Prepared::unscaled(&r, &c.q1, &c.q2, l1, l2);
+        let (a, b) = (p.l1.quadratic_form(&p.r), p.l2.quadratic_form(&p.r));
+        let parts = PencilParts::new(&p.q1, &p.q2);
+        let ends = [p.l1.det(), p.l2.det(), a, b];
+        let rational = Rational::new(&p.r, &p.q1, &p.q2, &parts, ends);
+        (p, parts, rational, b.sqrt() / (a.sqrt() + b.sqrt()))
+    };
+    type Chained<'a> = (&'a str, &'a dyn Fn(&Case, f64) -> f64);
+    let stages: [Chained; 5] = [
+        ("t0", &|c, carry| setup(c, carry).3),
+        ("+predictor", &|c, carry| {
+            let (_, _, rational, t0) = setup(c, carry);
+            predict(&rational, t0, CORRECTOR_SWITCH_GAIN).unwrap().0
+        }),
+        ("+corrector", &|c, carry| {
+            let (p, parts, rational, t0) = setup(c, carry);
+            let refiner = Refiner::new(&p, &parts, &rational);
+            let (t, _, it) = predict(&rational, t0, CORRECTOR_SWITCH_GAIN).unwrap();
+            let c = correct(&p, &refiner, t, it).unwrap();
+            c.mu2 + c.lambda
+        }),
+        ("accurate", &|c, carry| {
+            let c = contact_function(&shifted(c, carry), &c.q1, &c.q2).unwrap();
+            c.mu2 + c.lambda
+        }),
+        ("fast", &|c, carry| {
+            let c = contact_function_fast(&shifted(c, carry), &c.q1, &c.q2).unwrap();
+            c.mu2 + c.lambda
+        }),
+    ];
+    for (name, f) in stages {
+        let mut per_call: Vec<f64> = (0..1000)
+            .map(|_| {
+                let s = std::time::Instant::now();
+                let mut carry = 0.0;
+                for c in &cases {
+                    carry = f(c, carry) * 0.0;
+                }
+                black_box(carry);
+                s.elapsed().as_nanos() as f64 / cases.len() as f64
+            })
+            .collect();
+        per_call.sort_by(f64::total_cmp);
+        println!("{name:>12}: chained, median {:6.1} ns", per_call[500]);
+    }
+}

@@ -122,7 +122,7 @@ impl<T: Arith> Start<T> {
 impl<'a> Refiner<'a> {
     #[inline(always)]
     pub fn new(p: &'a Prepared, parts: &'a PencilParts, rational: &'a Rational) -> Self {
-        let inv_unit = 1.0 / rational.det_unit();
+        let inv_unit = rational.inv_det_unit();
         let start = Start::new(&p.l1, &p.l2, &p.r, &p.q1, &p.q2, &parts.mixed, inv_unit);
         Self {
             p,
@@ -208,18 +208,32 @@ fn scaled_residual<T: Arith>(
     x: &[T; 3],
 ) -> [T; 3] {
     let (hi, lo) = pencil_dd(s, t, q1, q2);
-    std::array::from_fn(|i| {
-        let [k0, k1, k2] = IDX[i];
-        let (br, e0) = two_prod(beta, r[i]);
-        let (p0, e1) = two_prod(hi[k0], x[0]);
-        let (p1, e2) = two_prod(hi[k1], x[1]);
-        let (p2, e3) = two_prod(hi[k2], x[2]);
-        let (a, ea) = two_sum(br, -p0);
-        let (b, eb) = two_sum(-p1, -p2);
-        let (c, ec) = two_sum(a, b);
-        let small = lo[k0] * x[0] + lo[k1] * x[1] + lo[k2] * x[2];
-        c + ((ea + eb + ec) + (e0 - e1 - e2 - e3) - small)
-    })
+    // Row by row rather than through `std::array::from_fn`, which was left a call in
+    // the middle of the accurate path (every live register spilled around it).
+    let row = |i: usize| residual_row(beta, r[i], IDX[i], &hi, &lo, x);
+    [row(0), row(1), row(2)]
+}
+
+/// One row of [`scaled_residual`]: `ri` its entry of `r`, `k` the entries of `Q(λ)` in it.
+#[inline(always)]
+fn residual_row<T: Arith>(
+    beta: T,
+    ri: T,
+    k: [usize; 3],
+    hi: &[T; 6],
+    lo: &[T; 6],
+    x: &[T; 3],
+) -> T {
+    let [k0, k1, k2] = k;
+    let (br, e0) = two_prod(beta, ri);
+    let (p0, e1) = two_prod(hi[k0], x[0]);
+    let (p1, e2) = two_prod(hi[k1], x[1]);
+    let (p2, e3) = two_prod(hi[k2], x[2]);
+    let (a, ea) = two_sum(br, -p0);
+    let (b, eb) = two_sum(-p1, -p2);
+    let (c, ec) = two_sum(a, b);
+    let small = lo[k0] * x[0] + lo[k1] * x[1] + lo[k2] * x[2];
+    c + ((ea + eb + ec) + (e0 - e1 - e2 - e3) - small)
 }
 
 /// `Q(λ) = s q1 + t q2` as `hi + lo`, exact up to `ε²` relative.

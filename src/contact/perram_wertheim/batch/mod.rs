@@ -155,7 +155,8 @@ fn eight<const ACCURATE: bool>(
             false => scalar(k),
         });
     }
-    let inv_unit = F::from_array(b_exp.map(|e| 1.0 / pow2(e)));
+    // Rational::inv_det_unit, lane by lane.
+    let inv_unit = F::from_array(b_exp.map(|e| pow2(-e)));
     let start = Start::new(&l1, &l2, &r, &q1, &q2, &parts.mixed, inv_unit);
     let pair = RefinedPair {
         r: &r,
