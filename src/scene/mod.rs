@@ -30,6 +30,7 @@ mod elastic;
 mod fisher;
 mod grain;
 mod measured;
+mod measured_draw;
 mod orientation;
 mod output;
 mod params;

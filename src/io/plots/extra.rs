@@ -27,7 +27,7 @@ pub(super) enum Extra {
     Cdf(CdfPanel),
 }
 
-/// Completes the rows of the figure (one per phase, from [`rows`](super::panel::rows)):
+/// Completes the rows of the figure (one per phase, from [`rows`](super::rows::rows)):
 /// their panels get the table's targets of a measured phase ([`set_measured`]) and the
 /// KS distances of `statistics` ([`set_ks`]); returns each phase's extra panels
 /// ([`panels`]).

@@ -42,6 +42,7 @@ mod histogram;
 mod packing;
 mod panel;
 mod poles;
+mod rows;
 mod target;
 mod texture;
 
@@ -227,7 +228,7 @@ pub fn render_run_statistics_png(
     if phases.is_empty() {
         return Err(PlotError::NoPhases);
     }
-    let mut rows = panel::rows(phases, packed, voxel, dimension)?;
+    let mut rows = rows::rows(phases, packed, voxel, dimension)?;
     let mut extras = extra::complete(&mut rows, phases, packed, voxel, statistics);
     for m in textures {
         if let Some(phase) = extras.get_mut(m.phase) {
