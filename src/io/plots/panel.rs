@@ -1,8 +1,8 @@
 //! What a panel of the statistics figure holds: a phase's measured values and the
 //! target law they were drawn from; a row is a phase's panels.
 
-use super::target::Target;
-use crate::laws::Moments;
+use super::target::{distribution_target, law_moments, law_name, Target};
+use crate::laws::{Distribution, Moments};
 
 /// One panel: a quantity of one phase.
 #[derive(Debug, Clone)]
@@ -34,4 +34,27 @@ pub(super) struct Row {
     pub title: String,
     /// Equivalent diameter, aspect ratio, angle.
     pub panels: [Panel; 3],
+}
+
+impl Panel {
+    /// A panel of values drawn from `law`, against its density (`labels`: x, then y).
+    pub fn of_law(
+        title: &str,
+        labels: (&'static str, &'static str),
+        law: &Distribution,
+        packed: Vec<f64>,
+        voxel: Option<Vec<f64>>,
+    ) -> Self {
+        Self {
+            title: title.into(),
+            x_label: labels.0,
+            y_label: labels.1,
+            law: law_name(law),
+            law_moments: law_moments(law),
+            target: distribution_target(law),
+            packed,
+            voxel,
+            ks_distance: None,
+        }
+    }
 }

@@ -3,7 +3,6 @@
 
 use super::angles::{angle_panel, plane_angle_panel};
 use super::panel::{Panel, Row};
-use super::target::{distribution_target, law_moments, law_name};
 use super::{PlotError, VoxelSample};
 use crate::contact::Dimension;
 use crate::packing::PackedGrain;
@@ -72,49 +71,38 @@ pub(super) fn rows(
                     .as_ref()
                     .map(|s| s.iter().filter_map(|s| f(s)).collect::<Vec<f64>>())
             };
-            let diameter = Panel {
-                title: diameter_title.into(),
-                x_label: "equivalent diameter (box units)",
-                y_label: "probability density (1/box unit)",
-                law: law_name(&phase.size),
-                law_moments: law_moments(&phase.size),
-                target: distribution_target(&phase.size),
-                packed: grains
-                    .iter()
+            let diameter = Panel::of_law(
+                diameter_title,
+                (
+                    "equivalent diameter (box units)",
+                    "probability density (1/box unit)",
+                ),
+                &phase.size,
+                (grains.iter())
                     .map(|g| dimension.equivalent_diameter(g.semi_axes))
                     .collect(),
-                voxel: voxel_values(|s| Some(s.equivalent_diameter)),
-                ks_distance: None,
-            };
-            let aspect = Panel {
-                title: "aspect ratio".into(),
-                x_label: "aspect ratio a1/a2 (dimensionless)",
-                y_label: "probability density",
-                law: law_name(&phase.aspect_ratio),
-                law_moments: law_moments(&phase.aspect_ratio),
-                target: distribution_target(&phase.aspect_ratio),
-                packed: grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect(),
-                voxel: voxel_values(|s| Some(s.aspect_ratio)),
-                ks_distance: None,
-            };
+                voxel_values(|s| Some(s.equivalent_diameter)),
+            );
+            let density = "probability density";
             // Triaxial phases: b/a (a2/a1) against its law in place of a1/a2; the
             // summary has c/a and c/b too.
             let aspect = match &phase.triaxial {
-                None => aspect,
-                Some(t) => Panel {
-                    title: "shape ratio b/a".into(),
-                    x_label: "shape ratio b/a = a2/a1 (dimensionless)",
-                    y_label: "probability density",
-                    law: law_name(&t.b_over_a),
-                    law_moments: law_moments(&t.b_over_a),
-                    target: distribution_target(&t.b_over_a),
-                    packed: grains
-                        .iter()
+                None => Panel::of_law(
+                    "aspect ratio",
+                    ("aspect ratio a1/a2 (dimensionless)", density),
+                    &phase.aspect_ratio,
+                    grains.iter().map(|g| aspect_ratio(g.semi_axes)).collect(),
+                    voxel_values(|s| Some(s.aspect_ratio)),
+                ),
+                Some(t) => Panel::of_law(
+                    "shape ratio b/a",
+                    ("shape ratio b/a = a2/a1 (dimensionless)", density),
+                    &t.b_over_a,
+                    (grains.iter())
                         .map(|g| g.semi_axes[1] / g.semi_axes[0])
                         .collect(),
-                    voxel: voxel_values(|s| s.shape_ratios.map(|r| r[0])),
-                    ks_distance: None,
-                },
+                    voxel_values(|s| s.shape_ratios.map(|r| r[0])),
+                ),
             };
             let angle = match (dimension, &phase.orientation) {
                 // The voxel samples' angle is the axis's to z, not in the plane.
