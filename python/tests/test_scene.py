@@ -27,7 +27,7 @@ aspect_ratio = { distribution = "uniform", min = 1.0, max = 2.0 }
 orientation = { kind = "random" }
 """
 
-# (name, bad text, line, key path): as tests/cli_pack.rs's bad scenes.
+# (name, bad text, line, key path): as tests/cli_pack/main.rs's bad scenes.
 BAD = [
     ("syntax", TOML.replace("grains = 60", "grains = = 60"), 2, None),
     ("unknown_key", TOML.replace('boundary = "periodic"', 'boundery = "periodic"'), 6, "box.boundery"),
