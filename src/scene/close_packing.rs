@@ -36,6 +36,9 @@ const SHAPE_SAMPLE: usize = 4096;
 /// (`SHAPE_SAMPLE`). 1 for no grains or forms that are not finite and definite.
 pub fn affine_slenderness(specs: &[GrainSpec]) -> f64 {
     let sample = &specs[..specs.len().min(SHAPE_SAMPLE)];
+    if sample.is_empty() {
+        return 1.0;
+    }
     let form = |s: &GrainSpec| {
         let r = rotation_matrix(s.quaternion);
         let [a, b, c] = s.semi_axes;
@@ -43,9 +46,9 @@ pub fn affine_slenderness(specs: &[GrainSpec]) -> f64 {
         r * Matrix3::from_diagonal(&[a * a, b * b, c * c].into()) * r.transpose() / unit
     };
     let forms: Vec<Matrix3<f64>> = sample.iter().map(form).collect();
-    let mean = forms.iter().sum::<Matrix3<f64>>() / forms.len().max(1) as f64;
+    let mean = forms.iter().sum::<Matrix3<f64>>() / forms.len() as f64;
     let eigen = SymmetricEigen::new(mean);
-    if forms.is_empty() || !eigen.eigenvalues.iter().all(|&l| l.is_finite() && l > 0.0) {
+    if !eigen.eigenvalues.iter().all(|&l| l.is_finite() && l > 0.0) {
         return 1.0;
     }
     // mean^{-1/2}: the map that makes the mean form the identity.
@@ -66,6 +69,7 @@ pub fn affine_slenderness(specs: &[GrainSpec]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::{UnitQuaternion, Vector3};
 
     #[test]
     fn equal_spheres_and_discs_take_the_models_values() {
@@ -86,20 +90,18 @@ mod tests {
     #[test]
     fn aligned_grains_map_to_spheres_and_turned_ones_keep_their_slenderness() {
         let turned = |k: usize| {
-            // Orientations spread over the sphere (a golden-angle spiral of first axes).
+            // Orientations spread over the sphere (a golden-angle spiral of first axes),
+            // each the shortest turn taking x there.
             let z = 1.0 - 2.0 * (k as f64 + 0.5) / 400.0;
             let phi = 2.399_963_229_728_653 * k as f64;
-            let axis = [
+            let axis = Vector3::new(
                 (1.0 - z * z).sqrt() * phi.cos(),
                 (1.0 - z * z).sqrt() * phi.sin(),
                 z,
-            ];
-            // The quarter turn taking x to `axis`, about x × axis.
-            let (c, n) = (axis[0], [0.0, -axis[2], axis[1]]);
-            let norm = (n[1] * n[1] + n[2] * n[2]).sqrt().max(1e-300);
-            let half = 0.5 * c.clamp(-1.0, 1.0).acos();
-            let s = half.sin() / norm;
-            [half.cos(), 0.0, n[1] * s, n[2] * s]
+            );
+            let q = UnitQuaternion::rotation_between(&Vector3::x(), &axis)
+                .unwrap_or_else(UnitQuaternion::identity);
+            [q.w, q.i, q.j, q.k]
         };
         let aligned = vec![GrainSpec::new(0, 2.0, 2.0, [1.0, 0.0, 0.0, 0.0], None); 50];
         assert!((affine_slenderness(&aligned) - 1.0).abs() < 1e-9);
