@@ -11,5 +11,7 @@ mod overlap;
 mod robust;
 #[path = "fuzz_regressions/scale.rs"]
 mod scale;
+#[path = "fuzz_regressions/scale_2d.rs"]
+mod scale_2d;
 #[path = "fuzz_regressions/scenes.rs"]
 mod scenes;
