@@ -17,8 +17,8 @@
 //! 0.01.
 //!
 //! The rods are taken at [`RODS`] equidistant quantiles of the chord distribution, so
-//! the estimate is deterministic and costs about a millisecond whatever the number of
-//! spheres.
+//! the estimate is deterministic; it costs 15–30 ms up to 10⁵ spheres and about 0.1 s
+//! for 10⁶ (one thread of the 2-core development machine).
 //!
 //! # Discs (2D)
 //! The same mapping holds in the plane ([`random_close_packing_discs`]): a random line
@@ -36,6 +36,7 @@
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::ops::Range;
 
 /// Farr and Groot's free length per unit rod length, `f`: with it, equal spheres give
 /// 0.6435, the random close packing of monodisperse spheres the model is calibrated
@@ -166,20 +167,28 @@ impl Chords {
         }
     }
 
-    fn tail(&self, l: f64) -> f64 {
-        let k = self.d.partition_point(|&x| x <= l);
-        self.above[k] - l * l * self.above_over_d2[k]
+    /// `T(l)`, and the place of `l` among the diameters, sought in `range` (which
+    /// must hold it).
+    fn tail_within(&self, l: f64, range: Range<usize>) -> (f64, usize) {
+        let k = range.start + self.d[range].partition_point(|&x| x <= l);
+        (self.above[k] - l * l * self.above_over_d2[k], k)
     }
 
-    /// The chord length whose tail is `q`, by bisection on `[0, longest]`.
+    /// The chord length whose tail is `q`, by bisection on `[0, longest]`. The
+    /// midpoint's place among the diameters lies between the bracket ends' places, so
+    /// each step searches only there (a whole search per step made the estimate cost
+    /// 50–160 ms instead of 15–100, for the same bits).
     fn quantile(&self, q: f64, longest: f64) -> f64 {
         let (mut lo, mut hi) = (0.0, longest);
+        let place = |l: f64| self.d.partition_point(|&x| x <= l);
+        let (mut at_lo, mut at_hi) = (place(lo), place(hi));
         for _ in 0..QUANTILE_STEPS {
             let mid = 0.5 * (lo + hi);
-            if self.tail(mid) > q {
-                lo = mid;
+            let (tail, at) = self.tail_within(mid, at_lo..at_hi);
+            if tail > q {
+                (lo, at_lo) = (mid, at);
             } else {
-                hi = mid;
+                (hi, at_hi) = (mid, at);
             }
         }
         0.5 * (lo + hi)
