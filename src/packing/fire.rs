@@ -63,6 +63,14 @@ pub(crate) struct Fire {
     /// ([`DEEP`](super::jamming::DEEP) times the margin's): far above its jamming
     /// point. Meaningful after a relaxation that did not end clean.
     pub deep: bool,
+    /// Set before a relaxation to start it at the step size the last one ended with
+    /// instead of FIRE's start (velocities are zeroed as ever, so its first step
+    /// halves that size as after any stop); cleared by it. For the target's relaxation
+    /// after the overshoot (`effort::OVERSHOOT`): the same grains, 3 % smaller and
+    /// about as stiff, where restarting from `dt_start` spent the first steps growing
+    /// the step again (10⁵ grains: 85–89 steps at the target instead of 106–111;
+    /// BENCHMARKS.md, "Issue 26: against b030b67 again").
+    pub keep_step: bool,
     /// The square root of each grain's mass (see [`masses`]).
     root_mass: Vec<f64>,
     /// Each grain's force over its root mass.
@@ -84,10 +92,17 @@ impl Fire {
             restore: 0.0,
             turns: Vec::new(),
             deep: false,
+            keep_step: false,
             patience: Patience::NONE,
             root_mass: Vec::new(),
             scaled: Vec::new(),
         }
+    }
+
+    /// The current step size.
+    #[cfg(test)]
+    pub fn step_size(&self) -> f64 {
+        self.dt
     }
 
     /// Sets the jamming test's window (steps) of the next relaxations.
@@ -113,7 +128,9 @@ impl Fire {
         self.spin.clear();
         self.spin.resize(n, [0.0; 3]);
         let p = self.params;
-        self.dt = p.dt_start;
+        if !std::mem::take(&mut self.keep_step) {
+            self.dt = p.dt_start;
+        }
         self.alpha = p.alpha_start;
         self.positive = 0;
         // A contact overlapping by the margin has energy (2ρ (S − s))², ρ the smallest

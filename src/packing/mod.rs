@@ -209,6 +209,7 @@ pub fn pack(
         let guessed = std::mem::take(&mut guess);
         if overshoot.take().is_some() && matches!(outcome, Outcome::Stuck | Outcome::Budget) {
             s = 1.0;
+            fire.keep_step = true;
             continue;
         }
         match outcome {

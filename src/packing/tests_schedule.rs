@@ -1,10 +1,15 @@
 //! Tests of the jamming schedule: where the first relaxation runs, when a slow one
 //! counts as jammed, and which scale the bisection tries.
 
+use super::fire::{Context, Fire};
+use super::neighbours::Neighbours;
 use super::tests::{pack_scene, pack_with};
 use super::*;
 use crate::contact::Dimension;
 use crate::scene::{Rotation, Scene};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::sync::atomic::AtomicBool;
 
 /// 500 equal spheres (diameter 2) in a periodic cube at 0.63, 0.979 of their estimated
 /// jamming point; a scene's `seed` line goes before it.
@@ -133,4 +138,47 @@ fn frozen_grains_a_little_below_their_jamming_point_overshoot_then_reach_the_tar
     assert_eq!(p.stop, StopReason::TargetReached, "{}", p.fraction);
     assert!((p.fraction - 0.60).abs() < 1e-3, "{}", p.fraction);
     assert!(p.verification.is_clean(), "{:?}", p.verification);
+}
+
+/// A relaxation told to keep the step (the target's after the overshoot) starts at the
+/// step size the last one ended with, once; the next starts at FIRE's own start again.
+#[test]
+fn a_relaxation_that_keeps_the_step_starts_where_the_last_one_ended() {
+    let text = format!("seed = 3\n{SPHERES_063}");
+    let scene = Scene::from_str(&text, "test.toml").unwrap();
+    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+    let mut state = State::new(&specs, &scene.domain, 0.0).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let size = scene.domain.size;
+    for c in &mut state.centres {
+        *c = std::array::from_fn(|k| rng.random::<f64>() * size[k]);
+    }
+    let tuning = Tuning::default();
+    let stop = AtomicBool::new(false);
+    let mut progress = |_: &Progress| {};
+    let mut run = Context {
+        neighbours: Neighbours::new(tuning.neighbours),
+        forces: Default::default(),
+        counters: Counters::default(),
+        rotation: Rotation::None,
+        max_turn: std::f64::consts::PI,
+        contact_gap: 0.0,
+        resolution: 1e-3,
+        stop: &stop,
+        deadline: None,
+        progress: &mut progress,
+    };
+    let mut fire = Fire::new(tuning.fire);
+    let big_s = 1.0 + tuning.protocol.margin;
+    // From random places the power stays positive and the step grows.
+    fire.relax(&mut state, &mut run, 1.0, big_s, 60).unwrap();
+    let grown = fire.step_size();
+    assert!(grown > tuning.fire.dt_start, "{grown}");
+    // A relaxation with no steps left shows where it would start.
+    fire.keep_step = true;
+    fire.relax(&mut state, &mut run, 1.0, big_s, 0).unwrap();
+    assert_eq!(fire.step_size(), grown);
+    assert!(!fire.keep_step);
+    fire.relax(&mut state, &mut run, 1.0, big_s, 0).unwrap();
+    assert_eq!(fire.step_size(), tuning.fire.dt_start);
 }
