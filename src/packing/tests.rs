@@ -3,6 +3,8 @@
 use super::*;
 use crate::contact::rotation_column;
 use crate::scene::{PackingParams, Rotation, Scene};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
 /// 150 spheroids of aspect ratio 1.5 asked to fill 0.75 of a periodic cube: more than
 /// any random packing holds, so the loop runs until it jams.
@@ -15,6 +17,25 @@ size = [9.35, 9.35, 9.35]
 size = { distribution = "constant", value = 2.0 }
 aspect_ratio = { distribution = "constant", value = 1.5 }
 "#;
+
+/// The scene of `text` and its drawn grains.
+pub(super) fn drawn(text: &str) -> (Scene, Vec<GrainSpec>) {
+    let scene = Scene::from_str(text, "test.toml").unwrap();
+    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
+    (scene, specs)
+}
+
+/// The drawn grains of `text` at random positions.
+pub(super) fn scattered(text: &str) -> State {
+    let (scene, specs) = drawn(text);
+    let mut state = State::new(&specs, &scene.domain, 0.0).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let size = scene.domain.size;
+    for c in &mut state.centres {
+        *c = std::array::from_fn(|k| rng.random::<f64>() * size[k]);
+    }
+    state
+}
 
 /// The same grains tilted in the x–y plane (kanapy's tilt law).
 fn dense_tilted() -> String {

@@ -3,12 +3,10 @@
 
 use super::fire::{Context, Fire};
 use super::neighbours::Neighbours;
-use super::tests::{pack_scene, pack_with};
+use super::tests::{pack_scene, pack_with, scattered};
 use super::*;
 use crate::contact::Dimension;
 use crate::scene::{Rotation, Scene};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use std::sync::atomic::AtomicBool;
 
 /// 500 equal spheres (diameter 2) in a periodic cube at 0.63, 0.979 of their estimated
@@ -144,15 +142,7 @@ fn frozen_grains_a_little_below_their_jamming_point_overshoot_then_reach_the_tar
 /// step size the last one ended with, once; the next starts at FIRE's own start again.
 #[test]
 fn a_relaxation_that_keeps_the_step_starts_where_the_last_one_ended() {
-    let text = format!("seed = 3\n{SPHERES_063}");
-    let scene = Scene::from_str(&text, "test.toml").unwrap();
-    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-    let mut state = State::new(&specs, &scene.domain, 0.0).unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let size = scene.domain.size;
-    for c in &mut state.centres {
-        *c = std::array::from_fn(|k| rng.random::<f64>() * size[k]);
-    }
+    let mut state = scattered(&format!("seed = 3\n{SPHERES_063}"));
     let tuning = Tuning::default();
     let stop = AtomicBool::new(false);
     let mut progress = |_: &Progress| {};

@@ -5,9 +5,9 @@ use super::swap::sweep;
 use super::*;
 use crate::packing::forces::Forces;
 use crate::packing::neighbours::Neighbours;
+use crate::packing::tests::{drawn, scattered};
 use crate::packing::{pack, Job, NeighbourParams, Packing, StopReason, Tuning};
 use crate::scene::{GrainSpec, Scene};
-use rand::Rng;
 use std::sync::atomic::AtomicBool;
 
 /// 150 frozen spheroids of aspect 1.5 with lognormal sizes, random orientations, asked
@@ -35,24 +35,6 @@ size = [8.3, 8.3, 8.3]
 [[phase]]
 size = { distribution = "constant", value = 2.0 }
 "#;
-
-fn drawn(text: &str) -> (Scene, Vec<GrainSpec>) {
-    let scene = Scene::from_str(text, "test.toml").unwrap();
-    let specs = scene.sample_grains(&mut scene.rng()).unwrap();
-    (scene, specs)
-}
-
-/// The drawn grains of `text` at random positions.
-fn scattered(text: &str) -> State {
-    let (scene, specs) = drawn(text);
-    let mut state = State::new(&specs, &scene.domain, 0.0).unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
-    let size = scene.domain.size;
-    for c in &mut state.centres {
-        *c = std::array::from_fn(|k| rng.random::<f64>() * size[k]);
-    }
-    state
-}
 
 /// The overlap energy of the state at scale `big_s`, from the loop's own forces.
 fn energy(state: &mut State, big_s: f64) -> f64 {
