@@ -17,6 +17,10 @@ use pyo3::prelude::*;
 fn _grainpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", m.py().get_type::<errors::SceneError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // numpy's C API is loaded on first use, which runs Python code: left to the first
+    // result after a pack, a Ctrl-C landing then made that load fail, and the numpy crate
+    // panics on it. Loaded here, at import, a late Ctrl-C is a plain KeyboardInterrupt.
+    numpy::PyArray1::<f64>::zeros(m.py(), [0], false);
     m.add_class::<scene::PyScene>()?;
     m.add_class::<packing::PyPacking>()?;
     m.add_function(wrap_pyfunction!(contact::contact_function_rows, m)?)?;
