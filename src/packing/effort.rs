@@ -183,12 +183,29 @@ pub(super) const DEEP_START: f64 = 1.06;
 /// 0.99 (equal spheres asked 0.64, lognormal ones 0.657) it creeps for thousands.
 pub(super) const NEAR_JAMMING: f64 = 0.97;
 
-/// The ratio (as for [`NEAR_JAMMING`]) from which a target is far enough above the
-/// jamming point that the relaxation there jams deep by itself, and starts at the
-/// target as before: at 1.026 (equal spheres and frozen spheroids of aspect 1.5 at
-/// full size 0.66) it crept for 1 000 steps, at 1.054 and 1.088 (lognormal and equal
-/// spheres at 0.70) it jammed deep in 900–1 500.
+/// The ratio of the target's fraction to the spheres' estimated jamming point (as for
+/// [`NEAR_JAMMING`]) where the band of [`DEEP_START`] ends. Below it a relaxation at the
+/// target creeps (at 1.026, equal spheres and frozen spheroids of aspect 1.5 at full size
+/// 0.66, for 1 000 steps); above it, it jams by itself, but late: at 1.054 and 1.088
+/// (lognormal and equal spheres at 0.70) in 900–1 500 steps, where one at the band's
+/// deepest fraction (`DEEP_START³ × FAR_ABOVE_JAMMING` of the estimate, 0.797 for equal
+/// spheres) jams in 400–500 and the search from there reaches denser states. So in 3D
+/// a target above the band starts at that fraction, or at the target where it is
+/// denser; the first relaxation's fraction then no longer depends on the start. On the
+/// family of starts (`benches/density/start/`, seeds 1 and 2) the 16 runs above the band
+/// pack 0.0009 denser on the mean (equal spheres 0.6419–0.6427 from every start, frozen
+/// spheroids 0.6310–0.6317 where they reached 0.6282–0.6305) in 11 % fewer FIRE steps;
+/// six seeds of `mono_periodic.toml` 0.0006–0.0025 denser in 4 % more time (BENCHMARKS.md,
+/// "Issue 27: the first relaxation at the band's deepest fraction"). In 2D (fibres at
+/// 0.90, bidisperse discs) it gained nothing measurable, and the target is kept.
 pub(super) const FAR_ABOVE_JAMMING: f64 = 1.04;
+
+/// The first relaxation's scale above the band of [`DEEP_START`] is rounded up to a
+/// multiple of this (2.4·10⁻⁴, 7·10⁻⁴ of the packing fraction, relative), so that inputs equal but for
+/// their rounding start at the same scale bit for bit: grains with a gap and the same
+/// grains inflated by it (`tests/gap.rs`) reach their fractions and estimates by
+/// different sums.
+pub(super) const FIRST_SCALE_STEP: f64 = 1.0 / 4096.0;
 
 /// How much lower than spheres of their sizes grains that do not turn jam, per unit of
 /// slenderness above 1, the slenderness taken after the linear map that makes their
@@ -257,7 +274,8 @@ impl First {
 /// diameters, lowered for grains that do not turn by [`frozen_share`]) and less than
 /// [`FAR_ABOVE_JAMMING`] of the spheres' (frozen spheroids of aspect 1.5 at 1.048 of
 /// their own, full size 0.66, still creep at the target), and `effort` lets the search
-/// start from a deep jam ([`QUENCH_MIN_EFFORT`]); at [`OVERSHOOT`] for a while when
+/// start from a deep jam ([`QUENCH_MIN_EFFORT`]); above that band, in 3D, at the band's
+/// deepest fraction or the target, whichever is denser; at [`OVERSHOOT`] for a while when
 /// frozen non-spheres fill from [`NEAR_FROZEN_JAMMING`] to [`NEAR_JAMMING`] of theirs;
 /// else at the target itself. `fraction` is the inflated grains' at the target size.
 /// Grains that turn (`turning`: not all spheres, and free to rotate) start at the
@@ -271,13 +289,28 @@ pub(super) fn first_relaxation(
     fraction: f64,
     (effort, turning): (f64, bool),
 ) -> First {
-    let Some(spheres) = sphere_close_packing(specs, dimension).filter(|_| !turning) else {
+    // Grains that turn start at the target: known before the estimate, which takes
+    // 15–90 ms from 10³ to 10⁶ grains.
+    if turning {
+        return First::TARGET;
+    }
+    let Some(spheres) = sphere_close_packing(specs, dimension) else {
         return First::TARGET;
     };
     let own = spheres * frozen_share(specs, dimension);
     if fraction >= NEAR_JAMMING * own {
-        let deep = effort >= QUENCH_MIN_EFFORT && fraction < FAR_ABOVE_JAMMING * spheres;
-        let scale = if deep { DEEP_START } else { 1.0 };
+        if effort < QUENCH_MIN_EFFORT {
+            return First::TARGET;
+        }
+        let edge = FAR_ABOVE_JAMMING * spheres;
+        let scale = if fraction < edge {
+            DEEP_START
+        } else if dimension == Dimension::Three {
+            let deepest = DEEP_START * (edge / fraction).cbrt();
+            ((deepest / FIRST_SCALE_STEP).ceil() * FIRST_SCALE_STEP).clamp(1.0, DEEP_START)
+        } else {
+            1.0
+        };
         First { scale, steps: None }
     } else if own < spheres && fraction >= NEAR_FROZEN_JAMMING * own {
         First {

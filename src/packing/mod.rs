@@ -19,7 +19,8 @@
 //! 4. the scale moves: the first trial is the target itself (`s = 1`, with a budget of
 //!    [`stage_steps`](ProtocolParams::stage_steps)), or a scale well above it when the target lies
 //!    near the jamming point estimated for the grains (`effort.rs`, `first_relaxation`: a
-//!    relaxation from random positions there creeps; grains that do not turn jam lower
+//!    relaxation from random positions there creeps; above it, in 3D, the first relaxation
+//!    is at that band's deepest fraction, where it jams sooner; grains that do not turn jam lower
 //!    than spheres of their sizes unless aligned, `frozen_share`; frozen grains a little below
 //!    theirs are first pushed past it for a while, `OVERSHOOT`); after a stuck relaxation the state shrunk by
 //!    its smallest μ is a clean state at once, and the scale is bisected between the best clean
@@ -282,7 +283,7 @@ pub fn pack(
     let mut snapshot = match best {
         Some(b) => b,
         None => {
-            let shrunk = clean_scale(&mut state, &mut run, &protocol, s)?;
+            let shrunk = clean_scale(&mut state, &mut run, &protocol, s)?.min(1.0);
             Snapshot::of(&state, shrunk)
         }
     };

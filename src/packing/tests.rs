@@ -99,7 +99,8 @@ fn the_trials_say_where_every_fire_step_went() {
     assert_eq!(p.trials.len() as u64, p.counters.steps);
     let steps: u64 = p.trials.iter().map(|t| t.fire_steps).sum();
     assert_eq!(steps, p.counters.fire_steps);
-    assert_eq!(p.trials[0].scale, 1.0);
+    // The first relaxation is at the target or deeper (`effort::first_relaxation`).
+    assert!(p.trials[0].scale >= 1.0, "{:?}", p.trials[0]);
     for t in &p.trials {
         match t.outcome {
             Outcome::Clean => assert!(t.scale <= p.scale, "{t:?} beyond {}", p.scale),

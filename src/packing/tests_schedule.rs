@@ -121,6 +121,51 @@ fn frozen_grains_start_deep_near_their_own_jamming_point_aligned_ones_as_spheres
     assert_eq!(first(&turned, 0.55), target);
 }
 
+/// A target above the band of [`DEEP_START`] starts at the band's deepest fraction
+/// (`DEEP_START³` times the band's upper edge), the same whatever the target, and at the
+/// target itself where that is denser; the band ends there without a jump. Below
+/// `effort = 0.5`, and in 2D, it starts at the target.
+#[test]
+fn a_target_far_above_the_jamming_point_starts_at_the_bands_deepest_fraction() {
+    let spheres: Vec<GrainSpec> = (0..2000)
+        .map(|k| {
+            GrainSpec::new(
+                0,
+                2.0 + 0.001 * f64::from(k % 7),
+                1.0,
+                [1.0, 0.0, 0.0, 0.0],
+                None,
+            )
+        })
+        .collect();
+    let edge = effort::FAR_ABOVE_JAMMING
+        * crate::scene::sphere_close_packing(&spheres, Dimension::Three).unwrap();
+    let deepest = DEEP_START.powi(3) * edge;
+    let first =
+        |fraction, effort| first_relaxation(&spheres, Dimension::Three, fraction, (effort, false));
+    for fraction in [edge * 1.001, 0.70, 0.72, 0.79] {
+        let f = first(fraction, 1.0);
+        assert_eq!(f.steps, None);
+        assert!(f.scale > 1.0, "{fraction}: {f:?}");
+        // Rounded up to a multiple of FIRST_SCALE_STEP.
+        let reached = f.scale.powi(3) * fraction / deepest;
+        let most = (1.0 + effort::FIRST_SCALE_STEP).powi(3);
+        assert!((1.0..most).contains(&reached), "{fraction}: {f:?}");
+        assert_eq!(f.scale % effort::FIRST_SCALE_STEP, 0.0, "{f:?}");
+    }
+    assert_eq!(first(edge * (1.0 - 1e-9), 1.0).scale, DEEP_START);
+    assert_eq!(first(edge * (1.0 + 1e-9), 1.0).scale, DEEP_START);
+    assert_eq!(first(deepest * 1.01, 1.0), effort::First::TARGET);
+    assert_eq!(first(0.70, 0.1), effort::First::TARGET);
+    let discs: Vec<GrainSpec> = (spheres.iter())
+        .map(|s| GrainSpec::ellipse(0, s.diameter, 1.0, 0.0))
+        .collect();
+    assert_eq!(
+        first_relaxation(&discs, Dimension::Two, 0.90, (1.0, false)),
+        effort::First::TARGET
+    );
+}
+
 /// Frozen spheroids asked 0.60 (0.95 of their own jamming point) relax past it for
 /// [`effort::OVERSHOOT_STEPS`] and then at the target, which they reach overlap-free.
 #[test]
