@@ -3,10 +3,10 @@
 
 use super::fire::{Context, Fire};
 use super::neighbours::Neighbours;
-use super::tests::{pack_scene, pack_with, scattered};
+use super::tests::{drawn, pack_scene, pack_with, scattered};
 use super::*;
 use crate::contact::Dimension;
-use crate::scene::{Rotation, Scene};
+use crate::scene::{sphere_close_packing, Rotation};
 use std::sync::atomic::AtomicBool;
 
 /// 500 equal spheres (diameter 2) in a periodic cube at 0.63, 0.979 of their estimated
@@ -89,8 +89,7 @@ fn frozen_grains_start_deep_near_their_own_jamming_point_aligned_ones_as_spheres
     let text = "seed = 1\ngrains = 2000\n[box]\nsize = [30.0, 30.0, 30.0]\n\
                 [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n\
                 aspect_ratio = { distribution = \"constant\", value = 1.5 }\n";
-    let scene = Scene::from_str(text, "test.toml").unwrap();
-    let turned = scene.sample_grains(&mut scene.rng()).unwrap();
+    let (_, turned) = drawn(text);
     let aligned: Vec<GrainSpec> = (turned.iter())
         .map(|s| GrainSpec {
             quaternion: [1.0, 0.0, 0.0, 0.0],
@@ -127,19 +126,9 @@ fn frozen_grains_start_deep_near_their_own_jamming_point_aligned_ones_as_spheres
 /// `effort = 0.5`, and in 2D, it starts at the target.
 #[test]
 fn a_target_far_above_the_jamming_point_starts_at_the_bands_deepest_fraction() {
-    let spheres: Vec<GrainSpec> = (0..2000)
-        .map(|k| {
-            GrainSpec::new(
-                0,
-                2.0 + 0.001 * f64::from(k % 7),
-                1.0,
-                [1.0, 0.0, 0.0, 0.0],
-                None,
-            )
-        })
-        .collect();
-    let edge = effort::FAR_ABOVE_JAMMING
-        * crate::scene::sphere_close_packing(&spheres, Dimension::Three).unwrap();
+    let spheres = vec![GrainSpec::new(0, 2.0, 1.0, [1.0, 0.0, 0.0, 0.0], None); 2000];
+    let edge =
+        effort::FAR_ABOVE_JAMMING * sphere_close_packing(&spheres, Dimension::Three).unwrap();
     let deepest = DEEP_START.powi(3) * edge;
     let first =
         |fraction, effort| first_relaxation(&spheres, Dimension::Three, fraction, (effort, false));
