@@ -33,6 +33,9 @@ pub(crate) struct Context<'a> {
     pub stop: &'a AtomicBool,
     /// When `packing.time_limit` runs out: a relaxation then stops as at `stop`.
     pub deadline: Option<Instant>,
+    /// When a relaxation gives way as if out of steps ([`Outcome::Budget`]): the
+    /// loop sets it for the relaxations before its search under a time limit.
+    pub give_way: Option<Instant>,
     pub progress: &'a mut dyn FnMut(&Progress),
 }
 
@@ -155,6 +158,9 @@ impl Fire {
             if run.stop.load(Ordering::Relaxed) || run.deadline.is_some_and(|d| Instant::now() >= d)
             {
                 return Ok(Outcome::Interrupted);
+            }
+            if run.give_way.is_some_and(|d| Instant::now() >= d) {
+                return Ok(Outcome::Budget);
             }
             let Context {
                 neighbours,

@@ -52,7 +52,8 @@ pub enum Outcome {
     /// positive plateau, or a relaxation before the search ran out of its patience
     /// (the jamming test of `packing/jamming.rs`).
     Stuck,
-    /// The step budget ran out.
+    /// The step budget ran out, or under a time limit a relaxation above the target
+    /// before the search gave way to it (`packing::effort::GIVE_WAY`).
     Budget,
     /// The caller asked to stop, or the time limit ran out.
     Interrupted,

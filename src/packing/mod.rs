@@ -83,7 +83,7 @@ pub use verify::{verify, MIN_GAP_REACH};
 use crate::scene::{Boundary, Rotation};
 use effort::{
     deep_patience, first_relaxation, recompression, recompression_cycles, start_cycle, trial_steps,
-    tries_target, CYCLE_WINDOW, DEEP_START, QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
+    tries_target, CYCLE_WINDOW, DEEP_START, GIVE_WAY, QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
 use fire::{Context, Fire};
 use jamming::Patience;
@@ -130,6 +130,8 @@ pub fn pack(
     })?;
     drop(sorted);
     state.centres = order.iter().map(|&k| centres[k]).collect();
+    let started = Instant::now();
+    let after = |share: f64| Some(started + Duration::from_secs_f64(params.time_limit? * share));
     let mut run = Context {
         neighbours: Neighbours::new(tuning.neighbours),
         forces: Default::default(),
@@ -139,7 +141,8 @@ pub fn pack(
         contact_gap: protocol.contact_gap,
         resolution: params.jam_resolution,
         stop,
-        deadline: (params.time_limit).map(|t| Instant::now() + Duration::from_secs_f64(t)),
+        deadline: after(1.0),
+        give_way: None,
         progress,
     };
     // The loop's relaxations, one per trial scale (`Packing::trials`).
@@ -166,6 +169,9 @@ pub fn pack(
     // The target is tried once out of turn (`tries_target`): a guess, which bounds the
     // search only if it jams on a plateau.
     let (mut target_tried, mut guess) = (false, false);
+    // Under a time limit, when the relaxations above the target before the search give
+    // way to it.
+    let mut give_way = after(GIVE_WAY);
     let reason = loop {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if left == 0 {
@@ -192,6 +198,7 @@ pub fn pack(
         } else {
             Patience::NONE
         };
+        run.give_way = give_way.filter(|_| quenching && s > 1.0);
         let before = run.counters.fire_steps;
         let outcome = fire.relax(
             &mut state,
@@ -208,6 +215,8 @@ pub fn pack(
             energy_per_grain: run.forces.energy / state.len() as f64,
         });
         let guessed = std::mem::take(&mut guess);
+        let gave_way = run.give_way.is_some_and(|d| Instant::now() >= d);
+        give_way = give_way.filter(|_| !gave_way);
         if overshoot.take().is_some() && matches!(outcome, Outcome::Stuck | Outcome::Budget) {
             s = 1.0;
             fire.keep_step = true;
@@ -222,9 +231,9 @@ pub fn pack(
                     best = Some(Snapshot::of(&state, shrunk));
                 }
                 // A shallow first jam is a poor start for the search: compress further,
-                // at once to where a jam is deep.
-                if quenching && !fire.deep && s < QUENCH_LIMIT && params.effort >= QUENCH_MIN_EFFORT
-                {
+                // at once to where a jam is deep, unless given way to the search.
+                let shallow = quenching && !gave_way && !fire.deep;
+                if shallow && s < QUENCH_LIMIT && params.effort >= QUENCH_MIN_EFFORT {
                     s = (s * (1.0 + QUENCH_STEP)).max(DEEP_START);
                     continue;
                 }

@@ -6,7 +6,7 @@ use super::neighbours::Neighbours;
 use super::tests::{drawn, pack_scene, pack_with, scattered};
 use super::*;
 use crate::contact::Dimension;
-use crate::scene::{sphere_close_packing, Rotation};
+use crate::scene::{sphere_close_packing, Rotation, Scene};
 use std::sync::atomic::AtomicBool;
 
 /// 500 equal spheres (diameter 2) in a periodic cube at 0.63, 0.979 of their estimated
@@ -190,6 +190,7 @@ fn a_relaxation_that_keeps_the_step_starts_where_the_last_one_ended() {
         resolution: 1e-3,
         stop: &stop,
         deadline: None,
+        give_way: None,
         progress: &mut progress,
     };
     let mut fire = Fire::new(tuning.fire);
@@ -205,4 +206,71 @@ fn a_relaxation_that_keeps_the_step_starts_where_the_last_one_ended() {
     assert!(!fire.keep_step);
     fire.relax(&mut state, &mut run, 1.0, big_s, 0).unwrap();
     assert_eq!(fire.step_size(), tuning.fire.dt_start);
+}
+
+/// Under a time limit shorter than the deep start, the deep relaxation gives way to the
+/// search at [`GIVE_WAY`] of it, and the search's first trials leave a clean state
+/// near the jamming point instead of the deep state shrunk until apart (about 0.45
+/// here). The limit starts at the time the deep start took in a run without one; the
+/// machine's speed varies between runs, so a run whose deep start still ended (faster)
+/// or whose search had no clean trial yet (slower) is tried again with less or more.
+#[test]
+fn a_time_limit_shorter_than_the_deep_start_gives_way_to_the_search() {
+    // 3 000 equal spheres at 0.70: far above their jamming point, a deep start.
+    let (mut scene, specs) = drawn(
+        "seed = 3\ngrains = 3000\n[box]\nsize = [26.19, 26.19, 26.19]\n\
+         [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n",
+    );
+    let started = std::time::Instant::now();
+    let mut deep = None;
+    let run = |scene: &Scene, progress: &mut dyn FnMut(&Progress)| {
+        let job = Job {
+            specs: &specs,
+            domain: &scene.domain,
+            params: &scene.packing,
+            tuning: &Tuning::default(),
+            seed: scene.seed,
+        };
+        pack(&job, &AtomicBool::new(false), progress).unwrap()
+    };
+    let plain = run(&scene, &mut |p| {
+        if p.scale < 1.0 {
+            deep.get_or_insert(started.elapsed());
+        }
+    });
+    let first = &plain.trials[0];
+    assert!(
+        first.scale > 1.0 && first.outcome == Outcome::Stuck,
+        "{first:?}"
+    );
+    let mut limit = deep.unwrap().as_secs_f64();
+    let mut tried = Vec::new();
+    for _ in 0..4 {
+        scene.packing.time_limit = Some(limit);
+        let timed = run(&scene, &mut |_| {});
+        assert_eq!(timed.stop, StopReason::TimeLimit);
+        assert!(timed.verification.is_clean(), "{:?}", timed.verification);
+        let gave_way = &timed.trials[0];
+        let clean = timed.trials[1..]
+            .iter()
+            .any(|t| t.outcome == Outcome::Clean);
+        match gave_way.outcome {
+            Outcome::Stuck => limit *= 0.7,
+            Outcome::Budget if !clean => limit *= 1.3,
+            _ => {
+                assert_eq!(gave_way.outcome, Outcome::Budget, "{:?}", timed.trials);
+                assert!(gave_way.fire_steps < first.fire_steps, "{gave_way:?}");
+                assert!(
+                    timed.fraction > 0.85 * plain.fraction,
+                    "{} against {}: {:?}",
+                    timed.fraction,
+                    plain.fraction,
+                    timed.trials
+                );
+                return;
+            }
+        }
+        tried.push(timed.trials);
+    }
+    panic!("no limit gave way and then found a clean state: {tried:?}");
 }
