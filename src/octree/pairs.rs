@@ -10,6 +10,13 @@ use std::ops::Range;
 /// which keeps the output order fixed.
 const TARGET_TASKS: usize = 256;
 
+/// Tasks walked at once between two appends to the list ([`Octree::pairs`]). With all
+/// of them at once, every task's part (and its growth slack) was held beside the list
+/// while it was copied: at 1.17 M grains (`benches/scale/million.toml`, 2 threads) the
+/// peak was 1.48–1.56 GB, with windows of 32 tasks 1.359 GB, the broad phase 6 % shorter
+/// and the packing 2 % longer (BENCHMARKS.md, "Issues 26 and 27: tried, not kept").
+const WINDOW_TASKS: usize = 32;
+
 /// Counters of one pair query (they feed the progress bar and the benchmarks).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct PairStats {
@@ -53,23 +60,27 @@ impl Octree {
         let walker = self.walker();
         let tasks = walker.tasks(&mut stats);
         if self.runs_parallel() {
-            let parts: Vec<(Vec<Pair>, PairStats)> = tasks
-                .par_iter()
-                .map(|&task| {
-                    let mut part = Vec::new();
-                    let mut sink = Sink {
-                        out: &mut part,
-                        stats: PairStats::default(),
-                    };
-                    walker.run(task, &mut sink);
-                    let stats = sink.stats;
-                    (part, stats)
-                })
-                .collect();
-            out.reserve(parts.iter().map(|(p, _)| p.len()).sum());
-            for (part, s) in &parts {
-                out.extend_from_slice(part);
-                stats.add(s);
+            // A window of tasks at a time, its parts appended in order and dropped before
+            // the next: the list is built beside one window's parts, not all of them.
+            for window in tasks.chunks(WINDOW_TASKS) {
+                let parts: Vec<(Vec<Pair>, PairStats)> = window
+                    .par_iter()
+                    .map(|&task| {
+                        let mut part = Vec::new();
+                        let mut sink = Sink {
+                            out: &mut part,
+                            stats: PairStats::default(),
+                        };
+                        walker.run(task, &mut sink);
+                        let stats = sink.stats;
+                        (part, stats)
+                    })
+                    .collect();
+                out.reserve(parts.iter().map(|(p, _)| p.len()).sum());
+                for (part, s) in &parts {
+                    out.extend_from_slice(part);
+                    stats.add(s);
+                }
             }
         } else {
             let mut sink = Sink {
