@@ -34,7 +34,8 @@ pub(crate) struct Context<'a> {
     /// When `packing.time_limit` runs out: a relaxation then stops as at `stop`.
     pub deadline: Option<Instant>,
     /// When a relaxation gives way as if out of steps ([`Outcome::Budget`]): the
-    /// loop sets it for the relaxations before its search under a time limit.
+    /// loop sets it, under a time limit, for the relaxations above the target before
+    /// its search (`effort::GIVE_WAY`).
     pub give_way: Option<Instant>,
     pub progress: &'a mut dyn FnMut(&Progress),
 }

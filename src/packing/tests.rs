@@ -69,14 +69,22 @@ fn pack_tuned(
     tuning: &Tuning,
     stopped: bool,
 ) -> Result<Packing, PackError> {
-    let job = Job {
+    pack(
+        &job(scene, specs, tuning),
+        &AtomicBool::new(stopped),
+        &mut |_| {},
+    )
+}
+
+/// The job of packing `specs` in `scene` with its seed.
+pub(super) fn job<'a>(scene: &'a Scene, specs: &'a [GrainSpec], tuning: &'a Tuning) -> Job<'a> {
+    Job {
         specs,
         domain: &scene.domain,
         params: &scene.packing,
         tuning,
         seed: scene.seed,
-    };
-    pack(&job, &AtomicBool::new(stopped), &mut |_| {})
+    }
 }
 
 #[test]

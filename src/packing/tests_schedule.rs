@@ -3,7 +3,7 @@
 
 use super::fire::{Context, Fire};
 use super::neighbours::Neighbours;
-use super::tests::{drawn, pack_scene, pack_with, scattered};
+use super::tests::{drawn, job, pack_scene, pack_with, scattered};
 use super::*;
 use crate::contact::Dimension;
 use crate::scene::{sphere_close_packing, Rotation, Scene};
@@ -223,15 +223,14 @@ fn a_time_limit_shorter_than_the_deep_start_gives_way_to_the_search() {
     );
     let started = std::time::Instant::now();
     let mut deep = None;
+    let tuning = Tuning::default();
     let run = |scene: &Scene, progress: &mut dyn FnMut(&Progress)| {
-        let job = Job {
-            specs: &specs,
-            domain: &scene.domain,
-            params: &scene.packing,
-            tuning: &Tuning::default(),
-            seed: scene.seed,
-        };
-        pack(&job, &AtomicBool::new(false), progress).unwrap()
+        pack(
+            &job(scene, &specs, &tuning),
+            &AtomicBool::new(false),
+            progress,
+        )
+        .unwrap()
     };
     let plain = run(&scene, &mut |p| {
         if p.scale < 1.0 {
