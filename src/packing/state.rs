@@ -159,18 +159,26 @@ impl State {
 
     /// Bounding spheres at scale `s`, each grown by `pad`.
     pub fn spheres(&self, s: f64, pad: f64, out: &mut Vec<Sphere>) {
-        out.clear();
-        out.extend(
-            self.centres
-                .iter()
-                .zip(&self.shapes)
-                .enumerate()
-                .map(|(id, (c, e))| Sphere {
+        // Every place is written in place: collecting in parallel would hold a second
+        // list at the memory's peak.
+        let unset = Sphere {
+            id: 0,
+            centre: [0.0; 3],
+            radius: 0.0,
+        };
+        out.resize(self.len(), unset);
+        (out.par_iter_mut())
+            .zip(&self.centres)
+            .zip(&self.shapes)
+            .enumerate()
+            .with_min_len(GRAINS_PER_TASK)
+            .for_each(|(id, ((o, c), e))| {
+                *o = Sphere {
                     id: id as u32,
                     centre: *c,
                     radius: s * e.bounding_radius() + pad,
-                }),
-        );
+                }
+            });
     }
 
     /// Packing fraction at scale `s` (areas scale by `s²` in 2D).
@@ -187,15 +195,17 @@ impl State {
     pub fn wrap(&mut self) {
         let size = self.domain.size;
         let periodic = self.domain.boundary == Boundary::Periodic;
-        for c in &mut self.centres {
-            for k in 0..3 {
-                c[k] = if periodic {
-                    wrap_coordinate(c[k], size[k])
-                } else {
-                    c[k].clamp(0.0, size[k])
-                };
-            }
-        }
+        (self.centres.par_iter_mut())
+            .with_min_len(GRAINS_PER_TASK)
+            .for_each(|c| {
+                for k in 0..3 {
+                    c[k] = if periodic {
+                        wrap_coordinate(c[k], size[k])
+                    } else {
+                        c[k].clamp(0.0, size[k])
+                    };
+                }
+            });
     }
 
     /// Whether grain `i` at scale `s` lies inside the walls with the wall margin.

@@ -110,7 +110,7 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
         eprintln!(
             "pack: {} grains, packing fraction {:.4} reached (requested {:.4}, drawn {:.4}; \
              random close packing of {} of these sizes ≈ {:.3}), {} after {} steps in \
-             {:.2} s; {} pairs whose bounding spheres meet checked exactly, {kept}",
+             {:.2} s; {} pairs whose bounding {} meet checked exactly, {kept}",
             packing.grains.len(),
             statistics.packing_fraction,
             d.requested_fraction,
@@ -124,6 +124,10 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
             packing.counters.steps,
             result.timings.packing.as_secs_f64(),
             packing.verification.checked_pairs,
+            match d.dimension {
+                Dimension::Three => "spheres",
+                Dimension::Two => "circles",
+            },
         );
         let r = &statistics.rotation;
         if r.mode != "none" {

@@ -5,14 +5,12 @@
 //! [`Forces`] at a fixed scale until the grains are apart.
 
 use super::forces::Forces;
-use super::grains::rotate_by;
 use super::jamming::{JamTest, Patience, Verdict};
 use super::neighbours::Neighbours;
-use super::state::{State, GRAINS_PER_TASK};
+use super::state::State;
 use super::{Counters, FireParams, Outcome, PackError, Progress};
 use crate::contact::dot;
 use crate::scene::{Boundary, Rotation};
-use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -79,6 +77,8 @@ pub(crate) struct Fire {
     root_mass: Vec<f64>,
     /// Each grain's force over its root mass.
     scaled: Vec<[f64; 3]>,
+    /// Each grain's smallest semi-axis, at hand for the step's limit.
+    radius: Vec<f64>,
 }
 
 impl Fire {
@@ -100,6 +100,7 @@ impl Fire {
             patience: Patience::NONE,
             root_mass: Vec::new(),
             scaled: Vec::new(),
+            radius: Vec::new(),
         }
     }
 
@@ -153,7 +154,7 @@ impl Fire {
             run.resolution,
             self.patience,
         );
-        masses(state, &mut self.root_mass);
+        masses(state, &mut self.root_mass, &mut self.radius);
         self.deep = false;
         for _ in 0..budget {
             if run.stop.load(Ordering::Relaxed) || run.deadline.is_some_and(|d| Instant::now() >= d)
@@ -219,173 +220,8 @@ impl Fire {
             || forces.wall_hits == 0
             || (0..state.len()).all(|i| state.inside_walls(i, s))
     }
-
-    /// One FIRE 2.0 step: power check, semi-implicit Euler, velocity mixing.
-    fn step(
-        &mut self,
-        state: &mut State,
-        forces: &Forces,
-        big_s: f64,
-        (mode, max_turn): (Rotation, f64),
-    ) -> Result<(), PackError> {
-        let (n, p) = (state.len(), self.params);
-        let rotate = mode != Rotation::None;
-        // Angular degrees of freedom in length units: ω × (S · largest semi-axis);
-        // only rotating grains need them.
-        self.levers.clear();
-        self.torques.clear();
-        if rotate {
-            self.levers
-                .extend(state.shapes.iter().map(|e| big_s * e.bounding_radius()));
-            let kappa = self.restore;
-            self.torques.extend((0..n).map(|i| {
-                let l = self.levers[i];
-                let mut t = forces.torque[i];
-                if kappa > 0.0 {
-                    axpy(&mut t, -kappa * l * l, &self.turns[i]);
-                }
-                let m = self.root_mass[i];
-                state.allowed_torque(i, t, mode).map(|x| x / (l * m))
-            }));
-        }
-        let (levers, torques) = (
-            std::mem::take(&mut self.levers),
-            std::mem::take(&mut self.torques),
-        );
-        let (lever, torque) = (|i: usize| levers[i], |i: usize| torques[i]);
-        // FIRE in mass-weighted coordinates √m x: velocities are √m v, forces F/√m.
-        let root_mass = std::mem::take(&mut self.root_mass);
-        let mut scaled = std::mem::take(&mut self.scaled);
-        scaled.clear();
-        scaled.extend((forces.force.iter().zip(&root_mass)).map(|(f, m)| f.map(|x| x / m)));
-        let mut power = 0.0;
-        for (i, f) in scaled.iter().enumerate() {
-            power += dot(f, &self.velocity[i]);
-            if rotate {
-                power += dot(&torque(i), &self.spin[i]);
-            }
-        }
-        if power > 0.0 {
-            self.positive += 1;
-            if self.positive > p.n_delay {
-                self.dt = (self.dt * p.dt_grow).min(p.dt_max);
-                self.alpha *= p.alpha_decay;
-            }
-        } else {
-            self.positive = 0;
-            self.dt = (self.dt * p.dt_shrink).max(p.dt_min);
-            self.alpha = p.alpha_start;
-            // FIRE 2.0: step back half a step, and stop.
-            let back = 0.5 * self.dt;
-            for ((c, v), m) in state.centres.iter_mut().zip(&self.velocity).zip(&root_mass) {
-                for k in 0..3 {
-                    c[k] -= back * v[k] / m;
-                }
-            }
-            self.velocity.iter_mut().for_each(|v| *v = [0.0; 3]);
-            self.spin.iter_mut().for_each(|v| *v = [0.0; 3]);
-        }
-        let dt = self.dt;
-        // v += dt F, then mix toward the force direction over all degrees of freedom.
-        let (mut vv, mut ff) = (0.0, 0.0);
-        for (i, &f) in scaled.iter().enumerate() {
-            axpy(&mut self.velocity[i], dt, &f);
-            vv += dot(&self.velocity[i], &self.velocity[i]);
-            ff += dot(&f, &f);
-            if rotate {
-                let t = torque(i);
-                axpy(&mut self.spin[i], dt, &t);
-                vv += dot(&self.spin[i], &self.spin[i]);
-                ff += dot(&t, &t);
-            }
-        }
-        let mix = if ff > 0.0 {
-            self.alpha * (vv / ff).sqrt()
-        } else {
-            0.0
-        };
-        let keep = 1.0 - self.alpha;
-        let limit = |i: usize| {
-            let m = root_mass[i];
-            m * p.max_move * big_s * state.shapes[i].inscribed_radius() / dt
-        };
-        // v ← (1 − α) v + mix F, at most `limit` (a grain moves at most `max_move` of
-        // its smallest semi-axis), then x += dt v / √m.
-        let advance = |v: &mut [f64; 3], f: &[f64; 3], limit: f64| {
-            *v = v.map(|x| keep * x);
-            axpy(v, mix, f);
-            clamp_norm(v, limit);
-        };
-        let mut turned = std::mem::take(&mut self.turned);
-        turned.clear();
-        if rotate {
-            for i in 0..n {
-                let m = root_mass[i];
-                let limit = limit(i);
-                let v = &mut self.velocity[i];
-                advance(v, &scaled[i], limit);
-                axpy(&mut state.centres[i], dt / m, v);
-                let l = lever(i);
-                let w = &mut self.spin[i];
-                advance(w, &torque(i), limit);
-                let angle = w.map(|x| dt * x / (l * m));
-                if angle.iter().any(|&a| a != 0.0) {
-                    let q = rotate_by(state.quaternions[i], angle);
-                    if state.within_turn(i, q, max_turn) {
-                        turned.push((i, q));
-                    } else {
-                        // At the limit: the grain stops turning that way.
-                        *w = [0.0; 3];
-                    }
-                }
-            }
-        } else {
-            // Each grain on its own: the same arithmetic in any order.
-            let centres = &mut state.centres;
-            (self.velocity.par_iter_mut())
-                .zip(centres)
-                .zip(&scaled)
-                .enumerate()
-                .with_min_len(GRAINS_PER_TASK)
-                .for_each(|(i, ((v, c), f))| {
-                    advance(v, f, limit(i));
-                    axpy(c, dt / root_mass[i], v);
-                });
-        }
-        let done = state.set_orientations(&turned);
-        (self.levers, self.torques, self.turned) = (levers, torques, turned);
-        (self.root_mass, self.scaled) = (root_mass, scaled);
-        done
-    }
 }
 
-/// Each grain's root mass `√m`: `m = max(1, (ρ/ρ̃)²)`, ρ its smallest semi-axis and ρ̃
-/// the median over the grains. A grain's stiffness is about 2 per contact, and a grain
-/// much larger than its neighbours has contacts in proportion to its surface, `(ρ/ρ̃)²`
-/// of a typical grain's: with masses in proportion, every grain's own vibration has
-/// about the same period, and FIRE's step is no longer held down by the large grains
-/// of a mixture. Equal grains keep unit masses.
-fn masses(state: &State, root_mass: &mut Vec<f64>) {
-    let mut rho: Vec<f64> = state.shapes.iter().map(|e| e.inscribed_radius()).collect();
-    let median = if rho.is_empty() {
-        1.0
-    } else {
-        let k = rho.len() / 2;
-        *rho.select_nth_unstable_by(k, f64::total_cmp).1
-    };
-    root_mass.clear();
-    root_mass.extend((state.shapes.iter()).map(|e| (e.inscribed_radius() / median).max(1.0)));
-}
+mod step;
 
-/// `y += a x`.
-fn axpy(y: &mut [f64; 3], a: f64, x: &[f64; 3]) {
-    y.iter_mut().zip(x).for_each(|(y, x)| *y += a * x);
-}
-
-fn clamp_norm(v: &mut [f64; 3], limit: f64) {
-    let norm = dot(v, v).sqrt();
-    if norm > limit {
-        let f = limit / norm;
-        v.iter_mut().for_each(|x| *x *= f);
-    }
-}
+use step::masses;
