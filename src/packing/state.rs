@@ -159,8 +159,8 @@ impl State {
 
     /// Bounding spheres at scale `s`, each grown by `pad`.
     pub fn spheres(&self, s: f64, pad: f64, out: &mut Vec<Sphere>) {
-        // Every place is written in place: collecting in parallel would hold a second
-        // list at the memory's peak.
+        // Written in place (the resize only fills a new list): collecting in parallel
+        // would hold a second list at the memory's peak.
         let unset = Sphere {
             id: 0,
             centre: [0.0; 3],
