@@ -179,7 +179,7 @@ impl Fire {
 /// much larger than its neighbours has contacts in proportion to its surface, `(ρ/ρ̃)²`
 /// of a typical grain's: with masses in proportion, every grain's own vibration has
 /// about the same period, and FIRE's step is no longer held down by the large grains
-/// of a mixture. Equal grains keep unit masses.
+/// of a mixture. Equal grains keep unit masses. `radius` gets each grain's ρ.
 pub(super) fn masses(state: &State, root_mass: &mut Vec<f64>, radius: &mut Vec<f64>) {
     radius.clear();
     radius.extend(state.shapes.iter().map(|e| e.inscribed_radius()));
@@ -191,7 +191,7 @@ pub(super) fn masses(state: &State, root_mass: &mut Vec<f64>, radius: &mut Vec<f
         *rho.select_nth_unstable_by(k, f64::total_cmp).1
     };
     root_mass.clear();
-    root_mass.extend((state.shapes.iter()).map(|e| (e.inscribed_radius() / median).max(1.0)));
+    root_mass.extend(radius.iter().map(|r| (r / median).max(1.0)));
 }
 
 /// `y += a x`.
