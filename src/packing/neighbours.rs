@@ -88,6 +88,7 @@ impl Neighbours {
 }
 
 /// `c_j + shift − c_i`.
+#[inline]
 pub(crate) fn relative(centres: &[[f64; 3]], p: &Pair, shape: &BoxShape) -> [f64; 3] {
     let (ci, cj, shift) = (centres[p.i as usize], centres[p.j as usize], p.shift(shape));
     [0, 1, 2].map(|k| cj[k] + shift[k] - ci[k])

@@ -8,22 +8,27 @@ use crate::packing::neighbours::relative;
 use crate::packing::state::State;
 use rayon::prelude::*;
 
-/// What one candidate pair keeps between evaluations.
-#[derive(Clone, Copy)]
-pub(super) struct Memo {
-    /// How far its grains may still move before it must be tested again, as a bound on
-    /// the sum of their motions (rounded down; see [`BOUND_SLACK`](super::BOUND_SLACK)).
-    allowance: f32,
-    /// Where its contact function starts next time (`contact::track`); NaN before its
-    /// first evaluation.
-    lambda: f32,
+/// What the candidate pairs keep between evaluations, an array each: the scan for due
+/// pairs, which visits every candidate every step, reads the allowances alone.
+#[derive(Default)]
+pub(super) struct Memos {
+    /// How far each pair's grains may still move before it must be tested again, as a
+    /// bound on the sum of their motions (rounded down; see
+    /// [`BOUND_SLACK`](super::BOUND_SLACK)).
+    pub allowance: Vec<f32>,
+    /// Where each pair's contact function starts next time (`contact::track`); NaN
+    /// before its first evaluation.
+    pub lambda: Vec<f32>,
 }
 
-impl Memo {
-    pub const NEW: Self = Self {
-        allowance: f32::NEG_INFINITY,
-        lambda: f32::NAN,
-    };
+impl Memos {
+    /// `n` pairs, each due and with no start.
+    pub fn reset(&mut self, n: usize) {
+        self.allowance.clear();
+        self.allowance.resize(n, f32::NEG_INFINITY);
+        self.lambda.clear();
+        self.lambda.resize(n, f32::NAN);
+    }
 }
 
 /// One task's share of a chunk of the pair list: its overlapping pairs and what they
@@ -62,9 +67,9 @@ pub(super) struct PairTest<'a> {
 impl PairTest<'_> {
     /// Whether the pair's allowance is spent: it must be tested.
     #[inline(always)]
-    fn due(&self, p: &Pair, memo: &Memo) -> bool {
+    fn due(&self, p: &Pair, allowance: f32) -> bool {
         let spent = self.motion[p.i as usize] + self.motion[p.j as usize];
-        spent > f64::from(memo.allowance)
+        spent > f64::from(allowance)
     }
 
     /// Asks for the pair's grains (centre, and the part of the shape a test reads).
@@ -80,26 +85,31 @@ impl PairTest<'_> {
 
     /// Tests a due pair: renews its allowance and returns its force if it overlaps.
     #[inline(always)]
-    fn test(&self, p: &Pair, memo: &mut Memo) -> Option<PairForce> {
+    fn test(&self, p: &Pair, allowance: &mut f32, lambda: &mut f32) -> Option<PairForce> {
         let (i, j) = (p.i as usize, p.j as usize);
         let state = self.state;
         let spent = self.motion[i] + self.motion[j];
         let (ei, ej) = (&state.shapes[i], &state.shapes[j]);
         let inner = ei.inscribed_radius() + ej.inscribed_radius();
         let skip_above = self.skip_above;
-        let mut allow = |m: f64| memo.allowance = round_down((m - skip_above) * inner + spent);
         let r = relative(&state.centres, p, &state.box_shape);
         // The gauge of a body inside the ball of radius b_i + b_j is at least
-        // |r| / (b_i + b_j).
+        // |r| / (b_i + b_j), and stays above the threshold while the grains travel
+        // less than the bounding spheres' gap at it (turns move no bounding sphere):
+        // for grains longer than they are wide, a longer allowance than μ₁'s.
         let outer = ei.bounding_radius() + ej.bounding_radius();
-        let far = dot(&r, &r).sqrt() / outer;
+        let distance = dot(&r, &r).sqrt();
+        let gap = distance - skip_above * outer;
+        let mut allow =
+            |m: f64| *allowance = round_down(((m - skip_above) * inner).max(gap) + spent);
+        let far = distance / outer;
         if far >= skip_above {
             allow(far);
             return None;
         }
         let radii =
             (state.round[i] && state.round[j]).then(|| (state.axes[i][0], state.axes[j][0]));
-        let (mu1, force) = pair_force(&r, (ei, ej), radii, (self.big_s, &mut memo.lambda), p);
+        let (mu1, force) = pair_force(&r, (ei, ej), radii, (self.big_s, lambda), p);
         allow(mu1);
         force
     }
@@ -111,23 +121,24 @@ impl PairTest<'_> {
 /// pair [`AHEAD`] places on before each test.
 pub(super) fn test_chunk(
     pairs: &[Pair],
-    memo: &mut [Memo],
+    (allowance, lambda): (&mut [f32], &mut [f32]),
     (found, torques): (&mut [Found], bool),
     test: &PairTest<'_>,
 ) {
     (pairs.par_chunks(PAIRS_PER_TASK))
-        .zip(memo.par_chunks_mut(PAIRS_PER_TASK))
+        .zip(allowance.par_chunks_mut(PAIRS_PER_TASK))
+        .zip(lambda.par_chunks_mut(PAIRS_PER_TASK))
         .zip(found.par_iter_mut())
-        .for_each(|((pairs, memo), found)| {
+        .for_each(|(((pairs, allowance), lambda), found)| {
             found.hits.clear();
             found.torques.clear();
             // Every place is written, and the count moves past the due ones: no branch
             // on a due pair, which the allowances make unpredictable.
             found.due.resize(pairs.len(), 0);
             let mut count = 0;
-            for (k, (p, m)) in pairs.iter().zip(memo.iter()).enumerate() {
+            for (k, (p, &a)) in pairs.iter().zip(allowance.iter()).enumerate() {
                 found.due[count] = k as u16;
-                count += usize::from(test.due(p, m));
+                count += usize::from(test.due(p, a));
             }
             found.due.truncate(count);
             found.tested = count as u64;
@@ -135,8 +146,9 @@ pub(super) fn test_chunk(
                 if let Some(&ahead) = found.due.get(n + AHEAD) {
                     test.fetch(&pairs[usize::from(ahead)]);
                 }
-                let (p, m) = (&pairs[usize::from(k)], &mut memo[usize::from(k)]);
-                if let Some(f) = test.test(p, m) {
+                let k = usize::from(k);
+                let p = &pairs[k];
+                if let Some(f) = test.test(p, &mut allowance[k], &mut lambda[k]) {
                     let (i, j, force, energy, mu1) = (p.i, p.j, f.force, f.energy, f.mu1);
                     found.hits.push(Hit {
                         i,
@@ -146,7 +158,8 @@ pub(super) fn test_chunk(
                         mu1,
                     });
                     if torques {
-                        found.torques.push([f.torque_i, f.torque_j]);
+                        let r = relative(&test.state.centres, p, &test.state.box_shape);
+                        found.torques.push(f.torques(&r));
                     }
                 }
             }

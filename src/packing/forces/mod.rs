@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 mod chunk;
 mod pair;
-use chunk::{test_chunk, Found, Memo, PairTest, PAIRS_PER_TASK};
+use chunk::{test_chunk, Found, Memos, PairTest, PAIRS_PER_TASK};
 pub(crate) use pair::{cross, pair_energy};
 
 /// The energy, forces and torques of a state, and what the narrow phase found.
@@ -48,7 +48,7 @@ pub(crate) struct Forces {
     found_next: Vec<Found>,
     /// What each candidate pair keeps between steps; valid until the list is rebuilt
     /// or the scale changes.
-    memo: Vec<Memo>,
+    memo: Memos,
     /// Distance each grain has moved since the list was built, summed step by step,
     /// and where it was at the last evaluation.
     travel: Vec<f64>,
@@ -81,7 +81,10 @@ pub(crate) struct Forces {
 /// Multiplied out, with `T = S (1 + BOUND_SLACK)`: the pair is skipped while
 /// `t' + T h' ≤ (m − T) ρ + t + T h`, its grains' motions (travel plus `T` times
 /// sweep) summed now against then, which is what each pair stores (its allowance, in
-/// `f32` rounded down: a pair is only ever tested sooner).
+/// `f32` rounded down: a pair is only ever tested sooner). The bounding spheres give a
+/// second bound, `μ₁ ≥ (|r| − t)/(b_i + b_j)` after a travel `t` (turns move no bounding
+/// sphere), which lasts longer for grains longer than they are wide: a pair keeps the
+/// larger of the two allowances.
 pub const BOUND_SLACK: f64 = 1e-6;
 
 /// Added to every turn angle in the sweep of [`BOUND_SLACK`]'s bound, for the rounding
@@ -145,13 +148,12 @@ impl Forces {
         }
         let skip_above = big_s * (1.0 + BOUND_SLACK);
         let fresh = build != self.build
-            || self.memo.len() != pairs.len()
+            || self.memo.allowance.len() != pairs.len()
             || skip_above != self.skip_above
             || torques != self.turning;
         if fresh {
             (self.build, self.skip_above, self.turning) = (build, skip_above, torques);
-            self.memo.clear();
-            self.memo.resize(pairs.len(), Memo::NEW);
+            self.memo.reset(pairs.len());
             self.travel.clear();
             self.travel.resize(n, 0.0);
             self.last.clone_from(&state.centres);
@@ -191,7 +193,8 @@ impl Forces {
         // has the rest of the tests meanwhile), in pair order whatever the threads.
         let (mut testing, mut adding) = (&mut self.found, &mut self.found_next);
         let mut pending = 0;
-        for (pairs, memo) in pairs.chunks(CHUNK).zip(self.memo.chunks_mut(CHUNK)) {
+        let memo = (self.memo.allowance.chunks_mut(CHUNK)).zip(self.memo.lambda.chunks_mut(CHUNK));
+        for (pairs, memo) in pairs.chunks(CHUNK).zip(memo) {
             let tasks = pairs.len().div_ceil(PAIRS_PER_TASK);
             if testing.len() < tasks {
                 testing.resize_with(tasks, Found::default);

@@ -11,16 +11,30 @@ use crate::octree::Pair;
 pub(super) struct PairForce {
     /// Force on the second grain (the first gets its opposite).
     pub force: [f64; 3],
-    pub torque_i: [f64; 3],
-    pub torque_j: [f64; 3],
+    /// Where the force acts, from the first centre; `None` for the fallback push,
+    /// which turns no grain. Torques are asked of it only when grains turn.
+    point: Option<[f64; 3]>,
     pub energy: f64,
     pub mu1: f64,
+}
+
+impl PairForce {
+    /// The torques about the first centre and about the second (at `r` from it).
+    pub fn torques(&self, r: &[f64; 3]) -> [[f64; 3]; 2] {
+        let Some(point) = self.point else {
+            return [[0.0; 3]; 2];
+        };
+        let force = self.force;
+        let pj = [0, 1, 2].map(|k| point[k] - r[k]);
+        [cross(&point, &force.map(|x| -x)), cross(&pj, &force)]
+    }
 }
 
 /// μ₁ of one candidate pair (a lower bound, to rounding), and its force and torques
 /// at scale `big_s` (`None` when it does not overlap there). `radii` are given when
 /// both grains are spheres; `lambda` is where the pair's contact function starts, and
 /// is left where the next evaluation should start.
+#[inline(always)]
 pub(super) fn pair_force(
     r: &[f64; 3],
     (ei, ej): (&PreparedEllipsoid, &PreparedEllipsoid),
@@ -61,8 +75,7 @@ pub(super) fn pair_force(
         let n = fallback_direction(p.i, p.j);
         let force = PairForce {
             force: n.map(|x| 2.0 * reach * x),
-            torque_i: [0.0; 3],
-            torque_j: [0.0; 3],
+            point: None,
             energy: w,
             mu1: 0.0,
         };
@@ -78,12 +91,9 @@ pub(super) fn pair_force(
     // normal.
     let scale = 2.0 * w * (1.0 - mu) * mu / rn;
     let force = touch.direction.map(|x| scale * x);
-    let point = touch.point;
-    let pj = [0, 1, 2].map(|k| point[k] - r[k]);
     let force = PairForce {
         force,
-        torque_i: cross(&point, &force.map(|x| -x)),
-        torque_j: cross(&pj, &force),
+        point: Some(touch.point),
         energy: pair_energy(reach, mu),
         mu1,
     };
