@@ -39,6 +39,9 @@ pub(crate) struct State {
     pub half_widths: Vec<[f64; 3]>,
     /// The largest bounding radius at target size.
     pub max_bounding_radius: f64,
+    /// Their mean (a grain's bounding radius, its largest semi-axis, does not change
+    /// as it turns).
+    pub mean_bounding_radius: f64,
     /// The relative margin kept from the walls ([`WALL_MARGIN`], plus
     /// [`INFLATION_ROUNDING`] with a gap).
     pub wall_margin: f64,
@@ -75,6 +78,7 @@ impl State {
             total_volume: 0.0,
             half_widths: Vec::with_capacity(n),
             max_bounding_radius: 0.0,
+            mean_bounding_radius: 0.0,
             wall_margin: if gap > 0.0 {
                 WALL_MARGIN + INFLATION_ROUNDING
             } else {
@@ -91,6 +95,8 @@ impl State {
             state.half_widths.push(widths);
         }
         state.total_volume = state.volumes.iter().sum();
+        let radii = state.shapes.iter().map(|e| e.bounding_radius());
+        state.mean_bounding_radius = radii.sum::<f64>() / n as f64;
         Ok(state)
     }
 
