@@ -107,27 +107,24 @@ pub fn run(path: &Path, options: &SceneArgs) -> Result<Exit, Failure> {
         } else {
             "none overlapping".to_owned()
         };
+        // The round grains of the estimate, and the grains' bounding shapes.
+        let (round, bounds) = match d.dimension {
+            Dimension::Three => ("spheres", "spheres"),
+            Dimension::Two => ("discs", "circles"),
+        };
         eprintln!(
             "pack: {} grains, packing fraction {:.4} reached (requested {:.4}, drawn {:.4}; \
-             random close packing of {} of these sizes ≈ {:.3}), {} after {} steps in \
-             {:.2} s; {} pairs whose bounding {} meet checked exactly, {kept}",
+             random close packing of {round} of these sizes ≈ {:.3}), {} after {} steps in \
+             {:.2} s; {} pairs whose bounding {bounds} meet checked exactly, {kept}",
             packing.grains.len(),
             statistics.packing_fraction,
             d.requested_fraction,
             d.drawn_fraction,
-            match d.dimension {
-                Dimension::Three => "spheres",
-                Dimension::Two => "discs",
-            },
             d.reachable_fraction,
             packing.stop,
             packing.counters.steps,
             result.timings.packing.as_secs_f64(),
             packing.verification.checked_pairs,
-            match d.dimension {
-                Dimension::Three => "spheres",
-                Dimension::Two => "circles",
-            },
         );
         let r = &statistics.rotation;
         if r.mode != "none" {

@@ -83,9 +83,15 @@ impl PairTest<'_> {
         }
     }
 
-    /// Tests a due pair: renews its allowance and returns its force if it overlaps.
+    /// Tests a due pair: renews its allowance and returns its force if it overlaps,
+    /// with the offset `r` it was found at.
     #[inline(always)]
-    fn test(&self, p: &Pair, allowance: &mut f32, lambda: &mut f32) -> Option<PairForce> {
+    fn test(
+        &self,
+        p: &Pair,
+        allowance: &mut f32,
+        lambda: &mut f32,
+    ) -> Option<(PairForce, [f64; 3])> {
         let (i, j) = (p.i as usize, p.j as usize);
         let state = self.state;
         let spent = self.motion[i] + self.motion[j];
@@ -111,7 +117,7 @@ impl PairTest<'_> {
             (state.round[i] && state.round[j]).then(|| (state.axes[i][0], state.axes[j][0]));
         let (mu1, force) = pair_force(&r, (ei, ej), radii, (self.big_s, lambda), p);
         allow(mu1);
-        force
+        force.map(|f| (f, r))
     }
 }
 
@@ -148,7 +154,7 @@ pub(super) fn test_chunk(
                 }
                 let k = usize::from(k);
                 let p = &pairs[k];
-                if let Some(f) = test.test(p, &mut allowance[k], &mut lambda[k]) {
+                if let Some((f, r)) = test.test(p, &mut allowance[k], &mut lambda[k]) {
                     let (i, j, force, energy, mu1) = (p.i, p.j, f.force, f.energy, f.mu1);
                     found.hits.push(Hit {
                         i,
@@ -158,7 +164,6 @@ pub(super) fn test_chunk(
                         mu1,
                     });
                     if torques {
-                        let r = relative(&test.state.centres, p, &test.state.box_shape);
                         found.torques.push(f.torques(&r));
                     }
                 }

@@ -141,10 +141,10 @@ impl Forces {
     ) {
         let n = state.len();
         self.force.truncate(n);
-        self.force.resize(n, [0.0; 3]);
         (self.force.par_iter_mut())
             .with_min_len(GRAINS_PER_TASK)
             .for_each(|f| *f = [0.0; 3]);
+        self.force.resize(n, [0.0; 3]);
         self.torque.clear();
         if torques {
             self.torque.resize(n, [0.0; 3]);
