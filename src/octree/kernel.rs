@@ -4,9 +4,12 @@ use super::boundary::{spheres_intersect, Aabb};
 use super::Pair;
 use std::ops::Range;
 
-/// Width of the blocks the zero-shift kernel tests before branching: a fixed trip
-/// count lets the compiler unroll and vectorise the block.
-const BLOCK: usize = 8;
+/// Width of the blocks the kernels test before branching, at most 32 (the bits of a
+/// block's mask): a fixed trip count lets the compiler unroll and vectorise the block.
+/// 16 walked the pair list of `benches/scale/hundred_thousand.toml`'s packing (1.17 M
+/// pairs) in 27 ms, 8 in 32 ms, 32 and 64 as 16 (BENCHMARKS.md, "Issue 26: the list
+/// build's kernel").
+const BLOCK: usize = 16;
 
 /// The stored spheres in tree order as separate arrays (structure of arrays), so that
 /// the kernels stream through them; every node owns a contiguous range.
@@ -122,28 +125,27 @@ impl<'a> View<'a> {
         self.for_each_hit(reaches, &mut f);
     }
 
-    /// Calls `f(k)` for every sphere `k` of the view that passes `test`, evaluating
-    /// `test` on whole blocks of [`BLOCK`] spheres without branches so that it
-    /// vectorises, and calling `f` only for the hits.
+    /// Calls `f(k)` for every sphere `k` of the view that passes `test`, in order,
+    /// evaluating `test` on whole blocks of [`BLOCK`] spheres into a bit mask, without
+    /// branches, so that it vectorises, and calling `f` only for the hits.
     #[inline(always)]
     fn for_each_hit(&self, test: impl Fn(usize) -> bool, mut f: impl FnMut(usize)) {
         let mut base = 0;
         while base < self.len() {
             let width = (self.len() - base).min(BLOCK);
-            let mut hits = [false; BLOCK];
+            let mut hits = 0u32;
             if width == BLOCK {
-                for (k, h) in hits.iter_mut().enumerate() {
-                    *h = test(base + k);
+                for k in 0..BLOCK {
+                    hits |= u32::from(test(base + k)) << k;
                 }
             } else {
-                for (k, h) in hits.iter_mut().enumerate().take(width) {
-                    *h = test(base + k);
+                for k in 0..width {
+                    hits |= u32::from(test(base + k)) << k;
                 }
             }
-            if hits.contains(&true) {
-                for k in (0..width).filter(|&k| hits[k]) {
-                    f(base + k);
-                }
+            while hits != 0 {
+                f(base + hits.trailing_zeros() as usize);
+                hits &= hits - 1;
             }
             base += width;
         }
