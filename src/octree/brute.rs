@@ -1,7 +1,7 @@
 //! The O(n²) references the tests hold the octree to.
 
 use super::boundary::{image_range, is_positive_image, small_image, spheres_intersect};
-use super::build::validate_input;
+use super::validate::validate_input;
 use super::{BoxShape, Neighbour, OctreeError, Pair, Sphere};
 
 /// Every intersecting pair by testing all of them: the O(n²) reference used by the

@@ -1,6 +1,6 @@
 //! The structural invariants every tree must satisfy.
 
-use super::build::first_duplicate;
+use super::validate::first_duplicate;
 use super::{InvariantViolation, Octree};
 
 impl Octree {

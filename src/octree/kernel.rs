@@ -27,7 +27,7 @@ impl Lanes {
         self.id.len()
     }
 
-    /// Sets the length to `n`; new slots hold zeros until [`Lanes::set`].
+    /// Sets the length to `n`; new slots hold zeros until [`Window::set`].
     pub fn resize(&mut self, n: usize) {
         for v in [&mut self.x, &mut self.y, &mut self.z, &mut self.r] {
             v.resize(n, 0.0);
@@ -35,9 +35,16 @@ impl Lanes {
         self.id.resize(n, 0);
     }
 
-    pub fn set(&mut self, k: usize, centre: [f64; 3], radius: f64, id: u32) {
-        (self.x[k], self.y[k], self.z[k]) = (centre[0], centre[1], centre[2]);
-        (self.r[k], self.id[k]) = (radius, id);
+    /// All the spheres as a window the build fills.
+    pub fn window(&mut self) -> Window<'_> {
+        Window {
+            x: &mut self.x,
+            y: &mut self.y,
+            z: &mut self.z,
+            r: &mut self.r,
+            id: &mut self.id,
+            offset: 0,
+        }
     }
 
     #[inline]
@@ -60,6 +67,65 @@ impl Lanes {
             r: &self.r[run.clone()],
             id: &self.id[run],
         }
+    }
+}
+
+/// The spheres of [`Lanes`] from `offset` on, as the build writes them: windows of
+/// disjoint runs are filled by parallel tasks.
+pub(crate) struct Window<'a> {
+    x: &'a mut [f64],
+    y: &'a mut [f64],
+    z: &'a mut [f64],
+    r: &'a mut [f64],
+    id: &'a mut [u32],
+    offset: usize,
+}
+
+impl<'a> Window<'a> {
+    /// A window on nothing.
+    pub fn empty() -> Self {
+        Window {
+            x: &mut [],
+            y: &mut [],
+            z: &mut [],
+            r: &mut [],
+            id: &mut [],
+            offset: 0,
+        }
+    }
+
+    /// Sets sphere `k` (counted in the whole lanes).
+    pub fn set(&mut self, k: usize, centre: [f64; 3], radius: f64, id: u32) {
+        let k = k - self.offset;
+        (self.x[k], self.y[k], self.z[k]) = (centre[0], centre[1], centre[2]);
+        (self.r[k], self.id[k]) = (radius, id);
+    }
+
+    /// The window before sphere `k` (counted in the whole lanes) and the one from it.
+    pub fn split_at(self, k: usize) -> (Self, Self) {
+        let at = k - self.offset;
+        let (x, x2) = self.x.split_at_mut(at);
+        let (y, y2) = self.y.split_at_mut(at);
+        let (z, z2) = self.z.split_at_mut(at);
+        let (r, r2) = self.r.split_at_mut(at);
+        let (id, id2) = self.id.split_at_mut(at);
+        let head = Window {
+            x,
+            y,
+            z,
+            r,
+            id,
+            offset: self.offset,
+        };
+        let tail = Window {
+            x: x2,
+            y: y2,
+            z: z2,
+            r: r2,
+            id: id2,
+            offset: k,
+        };
+        (head, tail)
     }
 }
 

@@ -41,10 +41,12 @@
 //! contents", which [`Octree::check_invariants`] checks, and on box tests that carry
 //! a rounding slack (see [`spheres_intersect`] for the exact predicate).
 //!
-//! The packing loop calls [`Octree::rebuild`] every step (measured faster than a refit:
-//! see `build.rs`) and [`Octree::pairs`] with a reused buffer; rayon splits the walk
-//! into a fixed list of tasks, so the output, order included, does not depend on the
-//! thread count. See [`Params`] for the limits and `BENCHMARKS.md` for the
+//! The packing loop calls [`Octree::rebuild`] at each list build (measured faster than
+//! a refit: see `build.rs`) and [`Octree::pairs`] with a reused buffer. rayon builds
+//! the children of large nodes in parallel, each into a node array of its own appended
+//! in order (the tree of a serial build), and splits the walk into a fixed list of
+//! tasks, so the output, order included, does not depend on the thread count. The
+//! walk's innermost loops test blocks of spheres into a bit mask (`kernel.rs`). See [`Params`] for the limits and `BENCHMARKS.md` for the
 //! figures.
 //!
 //! ```
@@ -72,7 +74,9 @@ mod kernel;
 mod neighbours;
 mod pairs;
 mod scratch;
+mod split;
 mod tree;
+mod validate;
 
 pub use boundary::{spheres_intersect, wrap_coordinate, Boundary, BoxShape};
 pub use brute::{brute_force_neighbours, brute_force_pairs};
