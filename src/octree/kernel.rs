@@ -8,7 +8,7 @@ use std::ops::Range;
 /// block's mask): a fixed trip count lets the compiler unroll and vectorise the block.
 /// 16 walked the pair list of `benches/scale/hundred_thousand.toml`'s packing (1.17 M
 /// pairs) in 27 ms, 8 in 32 ms, 32 and 64 as 16 (BENCHMARKS.md, "Issue 26: the list
-/// build's kernel").
+/// build's kernel and serial parts").
 const BLOCK: usize = 16;
 
 /// The stored spheres in tree order as separate arrays (structure of arrays), so that
