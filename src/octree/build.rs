@@ -4,7 +4,7 @@ use super::boundary::Aabb;
 use super::kernel::Lanes;
 use super::scratch::{Item, Scratch};
 use super::split::{leaf, Builder, PARALLEL_SPLIT};
-use super::validate::{validate_input, CHECKS_PER_TASK};
+use super::validate::{validate_input, CHECKS_PER_TASK, PARALLEL_FROM};
 use super::{BoxShape, Octree, OctreeError, Params, Sphere};
 use rayon::prelude::*;
 
@@ -56,16 +56,17 @@ impl Octree {
         let shape = self.shape;
         let mut scratch = std::mem::take(&mut self.scratch);
         scratch.a.clear();
-        scratch.a.par_extend(
-            spheres
-                .par_iter()
-                .with_min_len(CHECKS_PER_TASK)
-                .map(|s| Item {
-                    centre: shape.wrap(s.centre),
-                    radius: s.radius,
-                    id: s.id,
-                }),
-        );
+        let item = |s: &Sphere| Item {
+            centre: shape.wrap(s.centre),
+            radius: s.radius,
+            id: s.id,
+        };
+        if n >= PARALLEL_FROM {
+            let tasks = spheres.par_iter().with_min_len(CHECKS_PER_TASK);
+            scratch.a.par_extend(tasks.map(item));
+        } else {
+            scratch.a.extend(spheres.iter().map(item));
+        }
         // Free space only: grown when needed, never cleared.
         if scratch.b.len() < n {
             scratch.b.resize(n, Item::default());
@@ -157,8 +158,9 @@ mod tests {
     #[test]
     fn children_built_in_parallel_make_the_serial_tree() {
         // Radii from 0.02 to 2 (the largest stay in their node's bucket), centres on a
-        // low-discrepancy sequence, three times the parallel threshold.
-        let n = 3 * PARALLEL_SPLIT as u32;
+        // low-discrepancy sequence; nodes of 2¹² spheres or more split in parallel, so
+        // that subtrees built in parallel split in parallel again.
+        let n = 98_304;
         let spheres: Vec<Sphere> = (0..n)
             .map(|id| {
                 let t = f64::from(id);
@@ -168,7 +170,8 @@ mod tests {
             })
             .collect();
         let shape = BoxShape::periodic([40.0; 3]).unwrap();
-        let parallel = Octree::build(&spheres, shape, Params::default()).unwrap();
+        let mut parallel = Octree::build(&spheres, shape, Params::default()).unwrap();
+        parallel.rebuild_splitting(&spheres, 1 << 12).unwrap();
         let mut serial = parallel.clone();
         serial.rebuild_splitting(&spheres, usize::MAX).unwrap();
         assert_eq!(parallel.check_invariants(), Ok(()));
