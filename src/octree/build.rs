@@ -3,7 +3,7 @@
 use super::boundary::Aabb;
 use super::kernel::Lanes;
 use super::scratch::{Item, Scratch};
-use super::split::{leaf, Builder, PARALLEL_SPLIT};
+use super::split::{leaf, Builder};
 use super::validate::{validate_input, CHECKS_PER_TASK, PARALLEL_FROM};
 use super::{BoxShape, Octree, OctreeError, Params, Sphere};
 use rayon::prelude::*;
@@ -37,11 +37,12 @@ impl Octree {
     /// Rebuilding was measured faster than refitting the old tree; the numbers are in a
     /// note in the source (`src/octree/build.rs`).
     pub fn rebuild(&mut self, spheres: &[Sphere]) -> Result<(), OctreeError> {
-        self.rebuild_splitting(spheres, PARALLEL_SPLIT)
+        self.rebuild_splitting(spheres, PARALLEL_FROM)
     }
 
     /// [`Octree::rebuild`], with nodes of at least `parallel_from` spheres split in
-    /// parallel.
+    /// parallel: each child's subtree into a node array of its own, appended in order,
+    /// so that the tree is the one a serial build makes.
     fn rebuild_splitting(
         &mut self,
         spheres: &[Sphere],

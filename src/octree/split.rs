@@ -5,7 +5,6 @@ use super::boundary::Aabb;
 use super::kernel::Window;
 use super::scratch::Item;
 use super::tree::Node;
-use super::validate::PARALLEL_FROM;
 use super::Params;
 use rayon::prelude::*;
 
@@ -36,11 +35,6 @@ pub(super) struct Builder<'a, 'n> {
     /// Nodes of at least this many spheres have their children built in parallel.
     pub parallel_from: usize,
 }
-
-/// Spheres under a node from which its children's subtrees are built in parallel: each
-/// into a node array of its own, appended in order, so that the tree is the one a
-/// serial build makes. At 1.17 M spheres the serial split took 32 ms.
-pub(super) const PARALLEL_SPLIT: usize = PARALLEL_FROM;
 
 /// One child of a node split in parallel, before its subtree is built.
 struct Piece<'a> {
