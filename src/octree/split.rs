@@ -36,13 +36,22 @@ pub(super) struct Builder<'a, 'n> {
     pub parallel_from: usize,
 }
 
-/// One child of a node split in parallel, before its subtree is built.
+/// How a node's cell is cut: the cell, its middle, and the axes split there.
+type Cut = (Aabb, [f64; 3], [bool; 3]);
+
+/// One child of a split node before its subtree is built: its bucket, its spheres, and
+/// free space of the same length.
+struct Child<'a> {
+    bucket: usize,
+    items: &'a mut [Item],
+    free: &'a mut [Item],
+    codes: &'a mut [u8],
+}
+
+/// One child of a node split in parallel, with its own part of the final arrays.
 struct Piece<'a> {
     node: Node,
-    bucket: usize,
-    src: &'a mut [Item],
-    dst: &'a mut [Item],
-    codes: &'a mut [u8],
+    child: Child<'a>,
     lanes: Window<'a>,
 }
 
@@ -110,38 +119,27 @@ impl Builder<'_, '_> {
         }
         self.nodes[index].first_child = first_child as u32;
         self.nodes[index].child_count = buckets.len() as u32;
+        let cut = (cell, mid, split);
         if src.len() >= self.parallel_from {
-            let (cut, depth) = ((cell, mid, split), depth + 1);
-            return self.split_children(
-                first_child,
-                &buckets,
-                &counts,
-                (src, dst, codes),
-                cut,
-                depth,
-            );
+            let parts = (src, dst, codes);
+            return self.split_children(first_child, (&buckets, &counts), parts, cut, depth + 1);
         }
-        let (mut src, mut dst, mut codes) = (src, dst, codes);
-        for (child, &b) in buckets.iter().enumerate() {
-            let (src_head, src_tail) = std::mem::take(&mut src).split_at_mut(counts[b]);
-            let (dst_head, dst_tail) = std::mem::take(&mut dst).split_at_mut(counts[b]);
-            let (codes_head, codes_tail) = std::mem::take(&mut codes).split_at_mut(counts[b]);
-            (src, dst, codes) = (src_tail, dst_tail, codes_tail);
-            if b == 0 {
-                self.depth = self.depth.max(depth + 1);
-                self.emit(start + offsets[0], dst_head); // the bucket stays a leaf
-            } else {
-                let cell = child_cell(&cell, &mid, &split, b);
-                self.split(
-                    first_child + child,
-                    cell,
-                    depth + 1,
-                    dst_head,
-                    src_head,
-                    codes_head,
-                );
-            }
+        for (k, child) in children(&buckets, &counts, src, dst, codes).enumerate() {
+            self.grow(first_child + k, child, cut, depth + 1);
         }
+    }
+
+    /// Builds the subtree of node `index`, a child of a node split by `cut`: the bucket
+    /// of large spheres stays a leaf, an octant is split further.
+    fn grow(&mut self, index: usize, child: Child, cut: Cut, depth: u32) {
+        let (cell, mid, split) = cut;
+        if child.bucket == 0 {
+            self.depth = self.depth.max(depth);
+            let start = self.nodes[index].start as usize;
+            return self.emit(start, child.items);
+        }
+        let cell = child_cell(&cell, &mid, &split, child.bucket);
+        self.split(index, cell, depth, child.items, child.free, child.codes);
     }
 
     /// Builds the subtrees of the children `first_child..` (of `buckets`, sized
@@ -150,33 +148,26 @@ impl Builder<'_, '_> {
     fn split_children(
         &mut self,
         first_child: usize,
-        buckets: &[usize],
-        counts: &[usize; MAX_CHILDREN],
+        (buckets, counts): (&[usize], &[usize; MAX_CHILDREN]),
         (src, dst, codes): (&mut [Item], &mut [Item], &mut [u8]),
-        (cell, mid, split): (Aabb, [f64; 3], [bool; 3]),
+        cut: Cut,
         depth: u32,
     ) {
-        let mut pieces = Vec::with_capacity(buckets.len());
-        let (mut src, mut dst, mut codes) = (src, dst, codes);
         let mut lanes = std::mem::replace(&mut self.lanes, Window::empty());
-        for (child, &b) in buckets.iter().enumerate() {
-            let node = self.nodes[first_child + child];
-            let (src_head, src_tail) = std::mem::take(&mut src).split_at_mut(counts[b]);
-            let (dst_head, dst_tail) = std::mem::take(&mut dst).split_at_mut(counts[b]);
-            let (codes_head, codes_tail) = std::mem::take(&mut codes).split_at_mut(counts[b]);
-            (src, dst, codes) = (src_tail, dst_tail, codes_tail);
-            let (head, tail) = lanes.split_at(node.end as usize);
-            lanes = tail;
-            pieces.push(Piece {
-                node,
-                bucket: b,
-                // The child finds its spheres in `dst` and uses `src` as free space.
-                src: dst_head,
-                dst: src_head,
-                codes: codes_head,
-                lanes: head,
-            });
-        }
+        let pieces: Vec<Piece> = children(buckets, counts, src, dst, codes)
+            .enumerate()
+            .map(|(k, child)| {
+                let node = self.nodes[first_child + k];
+                let whole = std::mem::replace(&mut lanes, Window::empty());
+                let (head, tail) = whole.split_at(node.end as usize);
+                lanes = tail;
+                Piece {
+                    node,
+                    child,
+                    lanes: head,
+                }
+            })
+            .collect();
         let (params, parallel_from) = (self.params, self.parallel_from);
         let built: Vec<(Vec<Node>, u32)> = pieces
             .into_par_iter()
@@ -189,13 +180,7 @@ impl Builder<'_, '_> {
                     depth,
                     parallel_from,
                 };
-                let start = piece.node.start as usize;
-                if piece.bucket == 0 {
-                    builder.emit(start, piece.src); // the bucket stays a leaf
-                } else {
-                    let cell = child_cell(&cell, &mid, &split, piece.bucket);
-                    builder.split(0, cell, depth, piece.src, piece.dst, piece.codes);
-                }
+                builder.grow(0, piece.child, cut, depth);
                 let depth = builder.depth;
                 (nodes, depth)
             })
@@ -222,6 +207,30 @@ impl Builder<'_, '_> {
         }
     }
 }
+/// The children of a node split into `buckets` (sized `counts`): each finds its
+/// spheres in its part of `dst` (where the split put them) and uses its part of `src`
+/// as free space, so nothing is copied back.
+fn children<'a>(
+    buckets: &'a [usize],
+    counts: &'a [usize; MAX_CHILDREN],
+    mut src: &'a mut [Item],
+    mut dst: &'a mut [Item],
+    mut codes: &'a mut [u8],
+) -> impl Iterator<Item = Child<'a>> + 'a {
+    buckets.iter().map(move |&b| {
+        let (src_head, src_tail) = std::mem::take(&mut src).split_at_mut(counts[b]);
+        let (dst_head, dst_tail) = std::mem::take(&mut dst).split_at_mut(counts[b]);
+        let (codes_head, codes_tail) = std::mem::take(&mut codes).split_at_mut(counts[b]);
+        (src, dst, codes) = (src_tail, dst_tail, codes_tail);
+        Child {
+            bucket: b,
+            items: dst_head,
+            free: src_head,
+            codes: codes_head,
+        }
+    })
+}
+
 /// The cell of bucket `b` (1 + octant code) of `cell`; the bucket 0 keeps `cell`.
 fn child_cell(cell: &Aabb, mid: &[f64; 3], split: &[bool; 3], b: usize) -> Aabb {
     let mut child = *cell;
