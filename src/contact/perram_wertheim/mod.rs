@@ -15,7 +15,6 @@ use super::refine::{refined_ldl, Refined, Refiner};
 use super::scale::{needs_no_rescaling, offset_in_safe_range, Prepared};
 use super::sym::PencilParts;
 use super::{Contact, ContactError, Stop, Sym3, Vec3};
-use std::hint::select_unpredictable;
 
 /// Iteration cap. Bisection alone shrinks the bracket below one ulp of 1 in 53 steps,
 /// so hitting 64 means the residual is not behaving (non-finite or inconsistent signs).
@@ -299,14 +298,18 @@ fn predict_with(
                 what: "the derivatives of ln f(λ)",
             });
         }
-        // The sign of d1 is a coin toss from pair to pair: selects, not branches.
-        lo = select_unpredictable(d1 > 0.0, t, lo);
-        hi = select_unpredictable(d1 < 0.0, t, hi);
+        // Branches and short circuits: selects (`select_unpredictable`) and `&`, `|`
+        // made the fast path 2 ns longer (BENCHMARKS.md, "Issue 26 on a quiet machine").
+        if d1 > 0.0 {
+            lo = t;
+        } else if d1 < 0.0 {
+            hi = t;
+        }
         // φ is concave: φ″ < 0 unless rounding flattened it.
         let curvature = -d2;
         let halley_denominator = 2.0 * d2 * d2 - d1 * d3;
         let halley = t - 2.0 * d1 * d2 * p / halley_denominator;
-        let halley_ok = (halley_denominator > 0.0) & (halley >= lo) & (halley <= hi);
+        let halley_ok = halley_denominator > 0.0 && halley >= lo && halley <= hi;
         let next = if halley_ok {
             halley
         } else {
@@ -321,16 +324,15 @@ fn predict_with(
         // in f still to come.
         let gain2 = d1 * d1; // 2 |D2| × gain
 
-        // `|` and `&`, not `||` and `&&`: the compiler need not branch on each test.
-        let converged = (d1 == 0.0)
-            | ((curvature > 0.0)
-                & ((gain2 <= 2.0 * GAIN_TOL * curvature)
-                    | (halley_ok
-                        & (gain2 <= 2.0 * switch * curvature)
-                        & (!remainder || step_leaves_little(d1, d2, d3)))));
-        let stalled = (next == t) | (hi - lo <= f64::EPSILON * hi);
+        let converged = d1 == 0.0
+            || (curvature > 0.0
+                && (gain2 <= 2.0 * GAIN_TOL * curvature
+                    || (halley_ok
+                        && gain2 <= 2.0 * switch * curvature
+                        && (!remainder || step_leaves_little(d1, d2, d3)))));
+        let stalled = next == t || hi - lo <= f64::EPSILON * hi;
         t = next;
-        if converged | stalled {
+        if converged || stalled {
             return Ok((t, Stop::Converged, iterations));
         }
     }
