@@ -160,11 +160,19 @@ fn solve(r12: &Vec3, q1: &Sym3, q2: &Sym3, accurate: bool) -> Result<Contact, Co
 #[inline(always)]
 fn solve_in(r12: &Vec3, q1: &Sym3, q2: &Sym3, mode: Mode) -> Result<Contact, ContactError> {
     if needs_no_rescaling(r12, q1, q2) && *r12 != [0.0; 3] {
-        let ((l1, ok1), (l2, ok2)) = (Ldl::factor_flagged(q1), Ldl::factor_flagged(q2));
-        if ok1 & ok2 {
-            // Built here rather than returned in an `Option`, which costs a copy.
-            let p = Prepared::unscaled(r12, q1, q2, l1, l2);
-            return solve_prepared(&p, mode, (r12, q1, q2));
+        // The same factors either way, each path's form 2–3 ns shorter for it (BENCHMARKS.md).
+        if mode == Mode::Fast {
+            if let (Ok(l1), Ok(l2)) = (Ldl::factor(q1), Ldl::factor(q2)) {
+                let p = Prepared::unscaled(r12, q1, q2, l1, l2);
+                return solve_prepared(&p, mode, (r12, q1, q2));
+            }
+        } else {
+            let ((l1, ok1), (l2, ok2)) = (Ldl::factor_flagged(q1), Ldl::factor_flagged(q2));
+            if ok1 & ok2 {
+                // Built here rather than returned in an `Option`, which costs a copy.
+                let p = Prepared::unscaled(r12, q1, q2, l1, l2);
+                return solve_prepared(&p, mode, (r12, q1, q2));
+            }
         }
     }
     solve_otherwise(r12, q1, q2, mode)
@@ -298,8 +306,7 @@ fn predict_with(
                 what: "the derivatives of ln f(λ)",
             });
         }
-        // Branches and short circuits: selects (`select_unpredictable`) and `&`, `|`
-        // made the fast path 2 ns longer (BENCHMARKS.md, "Issue 26 on a quiet machine").
+        // Branches: selects and `&`, `|` made the fast path 2 ns longer (BENCHMARKS.md).
         if d1 > 0.0 {
             lo = t;
         } else if d1 < 0.0 {
