@@ -31,7 +31,8 @@
 //!    [`trial_steps`](ProtocolParams::trial_steps) steps (times `effort`, a scene parameter, when
 //!    below 1), and one that runs out of it counts as jammed at that scale (below `effort = 1`, so
 //!    does the target's own relaxation far above the jamming point, *deep*, after four such
-//!    budgets). A first jam that is *shallow* (the target just above the jamming point: the
+//!    budgets; under a time limit, a trial has at most half the steps the time left allows,
+//!    `effort.rs`, `timed_steps`). A first jam that is *shallow* (the target just above the jamming point: the
 //!    relaxation from random positions creeps, and is cut after
 //!    [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by the jamming test's
 //!    patience) sets no bound (from `effort` 0.5 on; below, the search starts from it): the state
@@ -80,15 +81,17 @@ pub use job::{Counters, Job, Outcome, PackError, Packing, Progress, Trial, Verif
 pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningError};
 pub use verify::{verify, MIN_GAP_REACH};
 
-use crate::scene::{Boundary, Rotation};
+use crate::scene::Rotation;
 use effort::{
-    deep_patience, first_relaxation, recompression, recompression_cycles, start_cycle, trial_steps,
-    tries_target, CYCLE_WINDOW, DEEP_START, GIVE_WAY, QUENCH_LIMIT, QUENCH_MIN_EFFORT, QUENCH_STEP,
+    deep_patience, first_relaxation, recompression, recompression_cycles, start_cycle, timed_steps,
+    trial_steps, tries_target, CYCLE_WINDOW, DEEP_START, GIVE_WAY, QUENCH_LIMIT, QUENCH_MIN_EFFORT,
+    QUENCH_STEP,
 };
 use fire::{Context, Fire};
 use jamming::Patience;
 use neighbours::Neighbours;
-use snapshot::{finish, restore, Snapshot};
+pub(crate) use snapshot::clean_scale;
+use snapshot::{finish, keep_denser, restore, Snapshot};
 use state::State;
 
 use crate::scene::GrainSpec;
@@ -100,7 +103,8 @@ use std::time::{Duration, Instant};
 /// Deterministic for a given seed, whatever the number of threads: candidate pairs
 /// come in a fixed order, each pair is evaluated on its own, and forces are summed in
 /// pair order. `stop` is polled once per FIRE step; when set, the loop ends with
-/// [`StopReason::Interrupted`] and returns the best overlap-free state. `progress` is
+/// [`StopReason::Interrupted`] and returns the best overlap-free state (the interrupted
+/// relaxation's own, shrunk until apart, if that is denser). `progress` is
 /// called after every FIRE step's narrow phase.
 pub fn pack(
     job: &Job<'_>,
@@ -180,11 +184,15 @@ pub fn pack(
         run.counters.steps += 1;
         // The target's own relaxation and its compressions; later trials (a
         // recompression may go past the target: a state jammed there is as good a
-        // start as any) have the trials'.
+        // start as any) have the trials', and under a time limit their share of it.
         let budget = if quenching {
             protocol.stage_steps
         } else {
-            trial_steps(&protocol, params.effort)
+            let timed = run.deadline.map_or(u64::MAX, |d| {
+                let left = d.saturating_duration_since(Instant::now());
+                timed_steps(started.elapsed(), left, run.counters.fire_steps)
+            });
+            trial_steps(&protocol, params.effort).min(timed)
         };
         // Shallow relaxations from random positions creep (module `jamming`); below
         // `effort = 1` a creeping one is cut as soon as a trial's budget runs out, and
@@ -223,13 +231,14 @@ pub fn pack(
             continue;
         }
         match outcome {
-            Outcome::Interrupted => break interrupted(&run),
+            Outcome::Interrupted => {
+                let reason = interrupted(&run);
+                keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
+                break reason;
+            }
             Outcome::Clean => best = Some(Snapshot::of(&state, s.min(1.0))),
             Outcome::Stuck | Outcome::Budget => {
-                let shrunk = clean_scale(&mut state, &mut run, &protocol, s)?.min(1.0);
-                if best.as_ref().is_none_or(|b| b.scale < shrunk) {
-                    best = Some(Snapshot::of(&state, shrunk));
-                }
+                keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
                 // A shallow first jam is a poor start for the search: compress further,
                 // at once to where a jam is deep, unless given way to the search.
                 let shallow = quenching && !gave_way && !fire.deep;
@@ -317,37 +326,6 @@ pub fn pack(
     )?;
     packing.trials = trials;
     Ok(packing)
-}
-
-/// The largest scale up to `s` at which the current state is clean: every pair apart
-/// with the contact gap (scaling all grains by `t` divides every μ by `t`), every
-/// grain inside the walls.
-pub(crate) fn clean_scale(
-    state: &mut State,
-    run: &mut Context<'_>,
-    protocol: &ProtocolParams,
-    s: f64,
-) -> Result<f64, PackError> {
-    let big_s = s * (1.0 + protocol.margin);
-    run.neighbours.update(state, big_s)?;
-    run.forces.evaluate(
-        state,
-        &run.neighbours.pairs,
-        run.neighbours.builds,
-        big_s,
-        false,
-    );
-    let mut t = s.min(run.forces.min_mu1 / (1.0 + protocol.contact_gap));
-    if state.domain.boundary == Boundary::Reflecting {
-        let size = state.domain.size;
-        for (c, w) in state.centres.iter().zip(&state.half_widths) {
-            for k in 0..3 {
-                let room = c[k].min(size[k] - c[k]).max(0.0);
-                t = t.min(room / (w[k] * (1.0 + state.wall_margin)));
-            }
-        }
-    }
-    Ok(t * (1.0 - protocol.shrink_margin))
 }
 
 /// Turns the grains of a clean snapshot back toward their drawn orientations as far as

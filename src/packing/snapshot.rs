@@ -2,12 +2,14 @@
 //! state when a later phase starts from it, and finally written out as packed grains
 //! and checked.
 
+use super::fire::Context;
 use super::grains::{PackedGrain, StopReason};
 use super::job::{Counters, Packing};
 use super::state::State;
 use super::verify::verify;
 use super::PackError;
-use crate::scene::GrainSpec;
+use super::ProtocolParams;
+use crate::scene::{Boundary, GrainSpec};
 
 /// Puts the state back to a snapshot's centres and orientations.
 pub(super) fn restore(state: &mut State, snapshot: &Snapshot) -> Result<(), PackError> {
@@ -34,6 +36,53 @@ impl Snapshot {
             quaternions: state.quaternions.clone(),
         }
     }
+}
+
+/// The largest scale up to `s` at which the current state is clean: every pair apart
+/// with the contact gap (scaling all grains by `t` divides every μ by `t`), every
+/// grain inside the walls.
+pub(crate) fn clean_scale(
+    state: &mut State,
+    run: &mut Context<'_>,
+    protocol: &ProtocolParams,
+    s: f64,
+) -> Result<f64, PackError> {
+    let big_s = s * (1.0 + protocol.margin);
+    run.neighbours.update(state, big_s)?;
+    run.forces.evaluate(
+        state,
+        &run.neighbours.pairs,
+        run.neighbours.builds,
+        big_s,
+        false,
+    );
+    let mut t = s.min(run.forces.min_mu1 / (1.0 + protocol.contact_gap));
+    if state.domain.boundary == Boundary::Reflecting {
+        let size = state.domain.size;
+        for (c, w) in state.centres.iter().zip(&state.half_widths) {
+            for k in 0..3 {
+                let room = c[k].min(size[k] - c[k]).max(0.0);
+                t = t.min(room / (w[k] * (1.0 + state.wall_margin)));
+            }
+        }
+    }
+    Ok(t * (1.0 - protocol.shrink_margin))
+}
+
+/// Keeps the current state, shrunk until it is clean ([`clean_scale`] from the trial
+/// scale `s`), as the best if it is denser than `best`.
+pub(super) fn keep_denser(
+    best: &mut Option<Snapshot>,
+    state: &mut State,
+    run: &mut Context<'_>,
+    protocol: &ProtocolParams,
+    s: f64,
+) -> Result<(), PackError> {
+    let shrunk = clean_scale(state, run, protocol, s)?.min(1.0);
+    if best.as_ref().is_none_or(|b| b.scale < shrunk) {
+        *best = Some(Snapshot::of(state, shrunk));
+    }
+    Ok(())
 }
 
 /// Writes the snapshot out as packed grains (the grains themselves, not inflated by
