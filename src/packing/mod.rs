@@ -119,6 +119,7 @@ pub fn pack(
         seed,
     } = *job;
     tuning.check()?;
+    let started = Instant::now();
     let protocol = tuning.protocol;
     let centres = start::random_centres(specs.len(), domain, seed);
     // The loop works on the grains in the order of their starting places along a
@@ -134,7 +135,6 @@ pub fn pack(
     })?;
     drop(sorted);
     state.centres = order.iter().map(|&k| centres[k]).collect();
-    let started = Instant::now();
     let after = |share: f64| Some(started + Duration::from_secs_f64(params.time_limit? * share));
     let mut run = Context {
         neighbours: Neighbours::new(tuning.neighbours),
@@ -146,6 +146,7 @@ pub fn pack(
         resolution: params.jam_resolution,
         stop,
         deadline: after(1.0),
+        started,
         give_way: None,
         progress,
     };
@@ -188,8 +189,7 @@ pub fn pack(
         let budget = if quenching {
             protocol.stage_steps
         } else {
-            let timed = run.deadline.map_or(u64::MAX, |d| {
-                let left = d.saturating_duration_since(Instant::now());
+            let timed = (run.time_left()).map_or(u64::MAX, |left| {
                 timed_steps(started.elapsed(), left, run.counters.fire_steps)
             });
             trial_steps(&protocol, params.effort).min(timed)
@@ -365,7 +365,7 @@ fn turn_back(
 
 /// Why a relaxation stopped early: the time limit if it has run out, else the caller.
 fn interrupted(run: &Context<'_>) -> StopReason {
-    if run.deadline.is_some_and(|d| Instant::now() >= d) {
+    if run.out_of_time() {
         StopReason::TimeLimit
     } else {
         StopReason::Interrupted

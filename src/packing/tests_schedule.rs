@@ -190,6 +190,7 @@ fn a_relaxation_that_keeps_the_step_starts_where_the_last_one_ended() {
         resolution: 1e-3,
         stop: &stop,
         deadline: None,
+        started: std::time::Instant::now(),
         give_way: None,
         progress: &mut progress,
     };

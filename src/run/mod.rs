@@ -170,10 +170,15 @@ pub fn run(scene: &Scene, options: RunOptions) -> Result<RunResult, RunError> {
         None => &mut silent,
     };
     let packing_started = Instant::now();
+    // A time limit counts from the start of the run: the drawing spent some of it.
+    let mut params = scene.packing;
+    if let Some(limit) = &mut params.time_limit {
+        *limit = (*limit - started.elapsed().as_secs_f64()).max(0.0);
+    }
     let job = Job {
         specs: &specs,
         domain: &scene.domain,
-        params: &scene.packing,
+        params: &params,
         tuning: &tuning,
         seed,
     };

@@ -40,11 +40,12 @@ pub struct PackingParams {
     /// inflated by 1 + `gap`; every fraction it reports is of the grains themselves.
     /// At least 0; default 0.
     pub gap: f64,
-    /// A time budget for the packing loop, in seconds (`packing.time_limit`): with it,
+    /// A time budget for the run before its outputs, in seconds (`packing.time_limit`):
+    /// the drawing, the packing loop and its final check fit in it. With it,
     /// effort's recompression cycles go on, whatever `effort`, until the target is
     /// reached or the time is up, and the densest clean state is kept
-    /// ([`StopReason::TimeLimit`](crate::packing::StopReason)). The grains' drawing,
-    /// the final check and the outputs come on top. Positive; default none.
+    /// ([`StopReason::TimeLimit`](crate::packing::StopReason)). The outputs come on
+    /// top. Positive; default none.
     pub time_limit: Option<f64>,
 }
 
