@@ -172,6 +172,28 @@ fn frozen_grains_a_little_below_their_jamming_point_overshoot_then_reach_the_tar
     assert!(p.verification.is_clean(), "{:?}", p.verification);
 }
 
+/// A loop's context for spheres that do not turn, with no time limit.
+fn context<'a>(
+    tuning: &Tuning,
+    stop: &'a AtomicBool,
+    progress: &'a mut dyn FnMut(&Progress),
+) -> Context<'a> {
+    Context {
+        neighbours: Neighbours::new(tuning.neighbours),
+        forces: Default::default(),
+        counters: Counters::default(),
+        rotation: Rotation::None,
+        max_turn: std::f64::consts::PI,
+        contact_gap: 0.0,
+        resolution: 1e-3,
+        stop,
+        deadline: None,
+        started: std::time::Instant::now(),
+        give_way: None,
+        progress,
+    }
+}
+
 /// A relaxation told to keep the step (the target's after the overshoot) starts at the
 /// step size the last one ended with, once; the next starts at FIRE's own start again.
 #[test]
@@ -180,20 +202,7 @@ fn a_relaxation_that_keeps_the_step_starts_where_the_last_one_ended() {
     let tuning = Tuning::default();
     let stop = AtomicBool::new(false);
     let mut progress = |_: &Progress| {};
-    let mut run = Context {
-        neighbours: Neighbours::new(tuning.neighbours),
-        forces: Default::default(),
-        counters: Counters::default(),
-        rotation: Rotation::None,
-        max_turn: std::f64::consts::PI,
-        contact_gap: 0.0,
-        resolution: 1e-3,
-        stop: &stop,
-        deadline: None,
-        started: std::time::Instant::now(),
-        give_way: None,
-        progress: &mut progress,
-    };
+    let mut run = context(&tuning, &stop, &mut progress);
     let mut fire = Fire::new(tuning.fire);
     let big_s = 1.0 + tuning.protocol.margin;
     // From random places the power stays positive and the step grows.
@@ -290,6 +299,31 @@ fn a_timed_trial_takes_its_share_of_the_steps_left() {
         effort::TIMED_LEAST
     );
     assert_eq!(timed_steps(Duration::ZERO, secs(1.0), 0), u64::MAX);
+}
+
+/// Under a time limit the loop keeps the time of [`fire::FINISH_STEPS`] of its FIRE
+/// steps, at their mean cost so far, for the final check: it is out of time that much
+/// before the deadline, and not before its first step.
+#[test]
+fn the_loop_keeps_time_for_the_final_check() {
+    use std::time::{Duration, Instant};
+    let (tuning, stop) = (Tuning::default(), AtomicBool::new(false));
+    let mut progress = |_: &Progress| {};
+    let mut run = context(&tuning, &stop, &mut progress);
+    let secs = Duration::from_secs_f64;
+    let now = Instant::now();
+    (run.started, run.deadline) = (now.checked_sub(secs(10.0)).unwrap(), Some(now + secs(10.0)));
+    assert!(run.time_left().unwrap() > secs(9.9));
+    // 100 steps in 10 s: six of them, 0.6 s, kept.
+    run.counters.fire_steps = 100;
+    let left = run.time_left().unwrap().as_secs_f64();
+    assert!(left > 9.3 && left < 9.41, "{left}");
+    assert!(!run.out_of_time());
+    // 6 steps in 10 s: the 10 s left are the check's.
+    run.counters.fire_steps = 6;
+    assert!(run.out_of_time());
+    run.deadline = None;
+    assert!(run.time_left().is_none() && !run.out_of_time());
 }
 
 /// A relaxation interrupted inside the search leaves its state, shrunk until apart, as
