@@ -365,7 +365,8 @@ pub(super) const TIMED_SHARE: f64 = 0.5;
 /// as stuck and bounds the search below it (equal spheres asked 0.70, seed 2: a trial
 /// at 0.954 cut at 68 steps, the search then held below it). The family of starts
 /// given half the time effort 1 takes: 0.0069 below effort 1's densities on the mean
-/// with 100, 0.0097 with none, 0.0156 with 200 (BENCHMARKS.md, same section).
+/// with 100, 0.0097 with none, 0.0156 with 200, before the final check's reserve
+/// (`fire::FINISH_STEPS`; 0.0078 with it and 100; BENCHMARKS.md, same section).
 pub(super) const TIMED_LEAST: u64 = 100;
 
 /// Under a time limit, the most FIRE steps a trial of the search may take: [`TIMED_SHARE`]

@@ -31,9 +31,9 @@
 //!    [`trial_steps`](ProtocolParams::trial_steps) steps (times `effort`, a scene parameter, when
 //!    below 1), and one that runs out of it counts as jammed at that scale (below `effort = 1`, so
 //!    does the target's own relaxation far above the jamming point, *deep*, after four such
-//!    budgets; under a time limit, a trial has at most half the steps the time left allows,
-//!    `effort.rs`, `timed_steps`). A first jam that is *shallow* (the target just above the jamming point: the
-//!    relaxation from random positions creeps, and is cut after
+//!    budgets; under a time limit, a trial has at most half the steps the time left
+//!    allows, `effort.rs`, `timed_steps`). A first jam that is *shallow* (the target just
+//!    above the jamming point: the relaxation from random positions creeps, and is cut after
 //!    [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by the jamming test's
 //!    patience) sets no bound (from `effort` 0.5 on; below, the search starts from it): the state
 //!    is compressed (to `DEEP_START`, then by 2 % of scale) and relaxed again until a jam is deep,
