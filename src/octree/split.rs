@@ -207,6 +207,7 @@ impl Builder<'_, '_> {
         }
     }
 }
+
 /// The children of a node split into `buckets` (sized `counts`): each finds its
 /// spheres in its part of `dst` (where the split put them) and uses its part of `src`
 /// as free space, so nothing is copied back.

@@ -53,12 +53,12 @@ impl Context<'_> {
     /// [`FINISH_STEPS`] steps at the mean cost of those so far; `None` without one.
     pub fn time_left(&self) -> Option<Duration> {
         let deadline = self.deadline?;
-        let steps = self.counters.fire_steps;
-        let reserve = match steps {
+        let now = Instant::now();
+        let reserve = match self.counters.fire_steps {
             0 => Duration::ZERO,
-            n => self.started.elapsed().mul_f64(FINISH_STEPS / n as f64),
+            n => (now - self.started).mul_f64(FINISH_STEPS / n as f64),
         };
-        Some(deadline.saturating_duration_since(Instant::now() + reserve))
+        Some(deadline.saturating_duration_since(now + reserve))
     }
 
     /// Whether the time limit has run out ([`Context::time_left`]).
