@@ -46,6 +46,10 @@ fn pack_stops_at_the_time_limit_with_the_densest_clean_state() {
     let err = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(3), "{err}");
     assert!(err.contains("time limit: 1.5 s of packing"), "{err}");
+    assert!(
+        !err.contains("before any relaxation came out clean"),
+        "{err}"
+    );
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap())
             .unwrap();
@@ -53,6 +57,15 @@ fn pack_stops_at_the_time_limit_with_the_densest_clean_state() {
     assert_eq!(summary["overlapping_pairs"], 0);
     let fraction = summary["packing_fraction"].as_f64().unwrap();
     assert!(fraction > 0.5 && fraction < 0.70, "{fraction}");
+    // A limit over before any relaxation came out clean says what the state kept is.
+    let run = pack_in(&dir, &["--quiet", "--time-limit", "1e-6", "scene.toml"]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("ran out before any relaxation came out clean")
+            && err.contains("a lower target_fraction, or more time"),
+        "{err}"
+    );
     // A flag that is not a positive number of seconds: bad input, nothing written.
     let bad = scratch("time-limit", "bad");
     std::fs::write(bad.join("scene.toml"), JAMMING).unwrap();

@@ -52,8 +52,8 @@ pub enum Outcome {
     /// positive plateau, or a relaxation before the search ran out of its patience
     /// (the jamming test of `packing/jamming.rs`).
     Stuck,
-    /// The step budget ran out, or under a time limit a relaxation above the target
-    /// before the search gave way to it (`packing::effort::GIVE_WAY`).
+    /// The step budget ran out, or under a time limit a relaxation before the first
+    /// clean state gave way (`packing::effort::GIVE_WAY`, `GIVE_WAY_TARGET`).
     Budget,
     /// The caller asked to stop, or the time limit ran out.
     Interrupted,

@@ -84,8 +84,8 @@ pub use verify::{verify, MIN_GAP_REACH};
 use crate::scene::Rotation;
 use effort::{
     deep_patience, first_relaxation, recompression, recompression_cycles, start_cycle, timed_steps,
-    trial_steps, tries_target, CYCLE_WINDOW, DEEP_START, GIVE_WAY, QUENCH_LIMIT, QUENCH_MIN_EFFORT,
-    QUENCH_STEP,
+    trial_steps, tries_target, CYCLE_WINDOW, DEEP_START, GIVE_WAY, GIVE_WAY_TARGET, QUENCH_LIMIT,
+    QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
 use fire::{Context, Fire};
 use jamming::Patience;
@@ -174,9 +174,13 @@ pub fn pack(
     // The target is tried once out of turn (`tries_target`): a guess, which bounds the
     // search only if it jams on a plateau.
     let (mut target_tried, mut guess) = (false, false);
-    // Under a time limit, when the relaxations above the target before the search give
-    // way to it.
-    let mut give_way = after(GIVE_WAY);
+    // Under a time limit, when the relaxations before the first clean state give way:
+    // those above the target, then the target's own.
+    let (mut give_way_above, mut give_way_target) = (after(GIVE_WAY), after(GIVE_WAY_TARGET));
+    // A mean FIRE step (the final check's reserve, a timed trial's share) counts from
+    // here: the setup above is no step, and on 10 000 grains it could take most of a
+    // short limit's reserve after the first step.
+    run.started = Instant::now();
     let reason = loop {
         let left = params.max_steps.saturating_sub(run.counters.fire_steps);
         if left == 0 {
@@ -190,7 +194,7 @@ pub fn pack(
             protocol.stage_steps
         } else {
             let timed = (run.time_left()).map_or(u64::MAX, |left| {
-                timed_steps(started.elapsed(), left, run.counters.fire_steps)
+                timed_steps(run.started.elapsed(), left, run.counters.fire_steps)
             });
             trial_steps(&protocol, params.effort).min(timed)
         };
@@ -206,7 +210,11 @@ pub fn pack(
         } else {
             Patience::NONE
         };
-        run.give_way = give_way.filter(|_| quenching && s > 1.0);
+        run.give_way = match (quenching, s > 1.0) {
+            (false, _) => None,
+            (true, true) => give_way_above,
+            (true, false) => give_way_target,
+        };
         let before = run.counters.fire_steps;
         let outcome = fire.relax(
             &mut state,
@@ -224,7 +232,13 @@ pub fn pack(
         });
         let guessed = std::mem::take(&mut guess);
         let gave_way = run.give_way.is_some_and(|d| Instant::now() >= d);
-        give_way = give_way.filter(|_| !gave_way);
+        if gave_way {
+            *(if s > 1.0 {
+                &mut give_way_above
+            } else {
+                &mut give_way_target
+            }) = None;
+        }
         if overshoot.take().is_some() && matches!(outcome, Outcome::Stuck | Outcome::Budget) {
             s = 1.0;
             fire.keep_step = true;
@@ -376,3 +390,5 @@ fn interrupted(run: &Context<'_>) -> StopReason {
 mod tests;
 #[cfg(test)]
 mod tests_schedule;
+#[cfg(test)]
+mod tests_time_limit;

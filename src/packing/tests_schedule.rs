@@ -3,10 +3,10 @@
 
 use super::fire::{Context, Fire};
 use super::neighbours::Neighbours;
-use super::tests::{drawn, job, pack_scene, pack_with, scattered};
+use super::tests::{drawn, pack_scene, pack_with, scattered};
 use super::*;
 use crate::contact::Dimension;
-use crate::scene::{sphere_close_packing, Rotation, Scene};
+use crate::scene::{sphere_close_packing, Rotation};
 use std::sync::atomic::AtomicBool;
 
 /// 500 equal spheres (diameter 2) in a periodic cube at 0.63, 0.979 of their estimated
@@ -173,7 +173,7 @@ fn frozen_grains_a_little_below_their_jamming_point_overshoot_then_reach_the_tar
 }
 
 /// A loop's context for spheres that do not turn, with no time limit.
-fn context<'a>(
+pub(super) fn context<'a>(
     tuning: &Tuning,
     stop: &'a AtomicBool,
     progress: &'a mut dyn FnMut(&Progress),
@@ -216,164 +216,4 @@ fn a_relaxation_that_keeps_the_step_starts_where_the_last_one_ended() {
     assert!(!fire.keep_step);
     fire.relax(&mut state, &mut run, 1.0, big_s, 0).unwrap();
     assert_eq!(fire.step_size(), tuning.fire.dt_start);
-}
-
-/// Under a time limit shorter than the deep start, the deep relaxation gives way to the
-/// search at [`GIVE_WAY`] of it, and the search's first trials leave a clean state
-/// near the jamming point instead of the deep state shrunk until apart (about 0.45
-/// here). The limit starts at the time the deep start took in a run without one; the
-/// machine's speed varies between runs, so a run whose deep start still ended (faster)
-/// or whose search had no clean trial yet (slower) is tried again with less or more.
-#[test]
-fn a_time_limit_shorter_than_the_deep_start_gives_way_to_the_search() {
-    // 3 000 equal spheres at 0.70: far above their jamming point, a deep start.
-    let (mut scene, specs) = drawn(
-        "seed = 3\ngrains = 3000\n[box]\nsize = [26.19, 26.19, 26.19]\n\
-         [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n",
-    );
-    let started = std::time::Instant::now();
-    let mut deep = None;
-    let tuning = Tuning::default();
-    let run = |scene: &Scene, progress: &mut dyn FnMut(&Progress)| {
-        pack(
-            &job(scene, &specs, &tuning),
-            &AtomicBool::new(false),
-            progress,
-        )
-        .unwrap()
-    };
-    let plain = run(&scene, &mut |p| {
-        if p.scale < 1.0 {
-            deep.get_or_insert(started.elapsed());
-        }
-    });
-    let first = &plain.trials[0];
-    assert!(
-        first.scale > 1.0 && first.outcome == Outcome::Stuck,
-        "{first:?}"
-    );
-    let mut limit = deep.unwrap().as_secs_f64();
-    let mut tried = Vec::new();
-    for _ in 0..4 {
-        scene.packing.time_limit = Some(limit);
-        let timed = run(&scene, &mut |_| {});
-        assert_eq!(timed.stop, StopReason::TimeLimit);
-        assert!(timed.verification.is_clean(), "{:?}", timed.verification);
-        let gave_way = &timed.trials[0];
-        let clean = timed.trials[1..]
-            .iter()
-            .any(|t| t.outcome == Outcome::Clean);
-        match gave_way.outcome {
-            Outcome::Stuck => limit *= 0.7,
-            Outcome::Budget if !clean => limit *= 1.3,
-            _ => {
-                assert_eq!(gave_way.outcome, Outcome::Budget, "{:?}", timed.trials);
-                assert!(gave_way.fire_steps < first.fire_steps, "{gave_way:?}");
-                assert!(
-                    timed.fraction > 0.85 * plain.fraction,
-                    "{} against {}: {:?}",
-                    timed.fraction,
-                    plain.fraction,
-                    timed.trials
-                );
-                return;
-            }
-        }
-        tried.push(timed.trials);
-    }
-    panic!("no limit gave way and then found a clean state: {tried:?}");
-}
-
-/// Under a time limit a trial of the search takes at most half the FIRE steps the time
-/// left allows at the mean cost of a step so far, and never fewer than
-/// [`effort::TIMED_LEAST`]; before the first step, no cap.
-#[test]
-fn a_timed_trial_takes_its_share_of_the_steps_left() {
-    use std::time::Duration;
-    let secs = Duration::from_secs_f64;
-    assert_eq!(timed_steps(secs(1.0), secs(4.0), 500), 1000);
-    assert_eq!(timed_steps(secs(2.0), secs(1.0), 2000), 500);
-    assert_eq!(timed_steps(secs(1.0), secs(0.01), 500), effort::TIMED_LEAST);
-    assert_eq!(
-        timed_steps(secs(1.0), Duration::ZERO, 500),
-        effort::TIMED_LEAST
-    );
-    assert_eq!(timed_steps(Duration::ZERO, secs(1.0), 0), u64::MAX);
-}
-
-/// Under a time limit the loop keeps the time of [`fire::FINISH_STEPS`] of its FIRE
-/// steps, at their mean cost so far, for the final check: it is out of time that much
-/// before the deadline, and not before its first step.
-#[test]
-fn the_loop_keeps_time_for_the_final_check() {
-    use std::time::{Duration, Instant};
-    let (tuning, stop) = (Tuning::default(), AtomicBool::new(false));
-    let mut progress = |_: &Progress| {};
-    let mut run = context(&tuning, &stop, &mut progress);
-    let secs = Duration::from_secs_f64;
-    let now = Instant::now();
-    (run.started, run.deadline) = (now.checked_sub(secs(10.0)).unwrap(), Some(now + secs(10.0)));
-    assert!(run.time_left().unwrap() > secs(9.9));
-    // 100 steps in 10 s: six of them, 0.6 s, kept.
-    run.counters.fire_steps = 100;
-    let left = run.time_left().unwrap().as_secs_f64();
-    assert!(left > 9.3 && left < 9.41, "{left}");
-    assert!(!run.out_of_time());
-    // 6 steps in 10 s: the 10 s left are the check's.
-    run.counters.fire_steps = 6;
-    assert!(run.out_of_time());
-    run.deadline = None;
-    assert!(run.time_left().is_none() && !run.out_of_time());
-}
-
-/// A relaxation interrupted inside the search leaves its state, shrunk until apart, as
-/// the result where that is denser than the densest clean trial before it: 1 000 equal
-/// spheres asked 0.70, stopped half way through each trial in turn, keep a clean state
-/// never less dense than the clean trials before the stop, and denser where the stop
-/// falls in a trial on its way to clean (its overlaps already small: 0.634 and 0.641
-/// where the clean trials before kept 0.622 and 0.641; the stuck trials' overlaps at
-/// half way shrink to less than the clean trial below them).
-#[test]
-fn an_interrupted_trial_keeps_its_state_shrunk_where_denser() {
-    let (scene, specs) = drawn(
-        "seed = 1\ngrains = 1000\n[box]\nsize = [18.16, 18.16, 18.16]\n\
-         [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n",
-    );
-    let tuning = Tuning::default();
-    let plain = pack(
-        &job(&scene, &specs, &tuning),
-        &AtomicBool::new(false),
-        &mut |_| {},
-    )
-    .unwrap();
-    let mut gained = 0;
-    for (k, trial) in plain.trials.iter().enumerate().skip(1) {
-        let earlier = &plain.trials[..k];
-        let at = earlier.iter().map(|t| t.fire_steps).sum::<u64>() + trial.fire_steps / 2;
-        let clean = (earlier.iter().filter(|t| t.outcome == Outcome::Clean))
-            .map(|t| t.fraction)
-            .fold(0.0, f64::max);
-        let stop = AtomicBool::new(false);
-        let stopped = pack(&job(&scene, &specs, &tuning), &stop, &mut |p| {
-            if p.step >= at {
-                stop.store(true, std::sync::atomic::Ordering::Relaxed);
-            }
-        })
-        .unwrap();
-        assert_eq!(stopped.stop, StopReason::Interrupted);
-        assert!(
-            stopped.verification.is_clean(),
-            "{k}: {:?}",
-            stopped.verification
-        );
-        assert!(
-            stopped.fraction >= clean,
-            "{k}: {} < {clean}",
-            stopped.fraction
-        );
-        if trial.outcome == Outcome::Clean && clean > 0.0 && stopped.fraction > clean {
-            gained += 1;
-        }
-    }
-    assert_eq!(gained, 2, "{:?}", plain.trials);
 }

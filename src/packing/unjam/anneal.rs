@@ -65,7 +65,8 @@ pub(crate) fn anneal(
     let mut s = low * (1.0 - ANNEAL_SHRINK);
     let mut monte_carlo = MonteCarlo::new(state, s);
     loop {
-        let (_, swaps) = monte_carlo.sweeps(state, s, ANNEAL_SWEEPS, &moves, rng)?;
+        let halt = || run.halted();
+        let (_, swaps) = monte_carlo.sweeps(state, s, ANNEAL_SWEEPS, &moves, rng, &halt)?;
         run.counters.swaps += swaps;
         // Not past the target: the loop stops there.
         let next = (s * (1.0 + ANNEAL_RATE)).min(1.0);

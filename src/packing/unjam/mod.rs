@@ -168,7 +168,10 @@ impl Unjammer {
         }
         let big_s = next * (1.0 + protocol.margin);
         for round in 0..self.rounds {
-            let kept = swap_round(state, big_s, &mut self.rng)?;
+            if run.halted() {
+                break;
+            }
+            let kept = swap_round(state, big_s, &mut self.rng, &|| run.halted())?;
             run.counters.swaps += kept;
             if kept == 0 {
                 break;
@@ -185,23 +188,32 @@ impl Unjammer {
     }
 }
 
-/// Up to [`SWAP_SWEEPS`] sweeps at scale `big_s`, until one keeps no swap; returns the
-/// swaps kept.
+/// Up to [`SWAP_SWEEPS`] sweeps at scale `big_s`, until one keeps no swap or `halt`
+/// says so; returns the swaps kept.
 pub(crate) fn swap_round(
     state: &mut State,
     big_s: f64,
     rng: &mut ChaCha8Rng,
+    halt: &dyn Fn() -> bool,
 ) -> Result<u64, PackError> {
     let mut kept = 0;
     for _ in 0..SWAP_SWEEPS {
-        let (_, swaps) = swap::sweep(state, big_s, rng)?;
+        let (_, swaps) = swap::sweep(state, big_s, rng, halt)?;
         kept += swaps;
-        if swaps == 0 {
+        if swaps == 0 || halt() {
             break;
         }
     }
     Ok(kept)
 }
+
+/// How often, in grains, a sweep of the unjamming moves asks whether to stop (the
+/// caller's stop flag, the time limit). The sweeps did not ask at all: a cycle that
+/// began just before the limit ran its swap rounds past it (10⁴ lognormal spheres given
+/// 3.94 s packed for 4.22 s), and a sweep of 10⁶ grains takes seconds. The clock is
+/// read once per this many attempts, each of which evaluates contact functions with
+/// their neighbours.
+pub(crate) const HALT_EVERY: usize = 1024;
 
 #[cfg(test)]
 mod tests;

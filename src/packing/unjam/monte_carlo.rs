@@ -4,7 +4,7 @@
 //! `overlaps_prepared`) and inside the walls. The step sizes adapt toward
 //! [`ACCEPTANCE`].
 
-use super::Partners;
+use super::{Partners, HALT_EVERY};
 use crate::contact::Dimension;
 use crate::contact::{dot, overlaps_prepared, PreparedEllipsoid};
 use crate::octree::{wrap_coordinate, Neighbour, Octree, Params, Sphere};
@@ -62,8 +62,9 @@ impl MonteCarlo {
         }
     }
 
-    /// `sweeps` sweeps of the clean state at scale `s` (it stays clean); returns the
-    /// moves (displacements and turns) and the swaps kept.
+    /// `sweeps` sweeps of the clean state at scale `s` (it stays clean), cut short
+    /// where `halt` says so (asked every [`HALT_EVERY`] grains); returns the moves
+    /// (displacements and turns) and the swaps kept.
     pub fn sweeps(
         &mut self,
         state: &mut State,
@@ -71,6 +72,7 @@ impl MonteCarlo {
         sweeps: usize,
         p: &Moves,
         rng: &mut ChaCha8Rng,
+        halt: &dyn Fn() -> bool,
     ) -> Result<(u64, u64), PackError> {
         let n = state.len();
         let partners = Partners::of(&state.volumes);
@@ -84,6 +86,9 @@ impl MonteCarlo {
             let tree = octree_of(state, reach)?;
             let (mut tried, mut kept, mut turns_tried, mut turns_kept) = (0u64, 0u64, 0u64, 0u64);
             for g in 0..n {
+                if g % HALT_EVERY == 0 && halt() {
+                    return Ok((moves, swaps));
+                }
                 let turning = p.rotation != Rotation::None && rng.random_bool(0.5);
                 let c = state.centres[g];
                 if turning {
@@ -131,6 +136,9 @@ impl MonteCarlo {
             let mut occupant: Vec<usize> = (0..n).collect();
             let mut place: Vec<usize> = (0..n).collect();
             for i in 0..n {
+                if i % HALT_EVERY == 0 && halt() {
+                    return Ok((moves, swaps));
+                }
                 let j = partners.draw(state.volumes[i], rng);
                 if j == i {
                     continue;

@@ -6,7 +6,7 @@
 //! with the largest bounding radius, and a grain's neighbours at a position are the
 //! stored positions within reach of its own bounding sphere.
 
-use super::Partners;
+use super::{Partners, HALT_EVERY};
 use crate::contact::{contact_function_fast, dot};
 use crate::octree::{Neighbour, Octree, Params, Sphere};
 use crate::packing::forces::pair_energy;
@@ -18,12 +18,14 @@ use rand_chacha::ChaCha8Rng;
 /// One sweep at scale `big_s` (the scale the energy is taken at): one swap attempt per
 /// grain, in index order, each with a partner drawn uniformly among the grains whose
 /// volume is within [`SWAP_VOLUME_RATIO`](super::SWAP_VOLUME_RATIO) of its own, kept
-/// when it lowers the energy.
+/// when it lowers the energy; cut short where `halt` says so (asked every
+/// [`HALT_EVERY`] grains).
 /// Returns the attempts (pairs compared) and the swaps kept.
 pub(crate) fn sweep(
     state: &mut State,
     big_s: f64,
     rng: &mut ChaCha8Rng,
+    halt: &dyn Fn() -> bool,
 ) -> Result<(u64, u64), PackError> {
     let n = state.len();
     let partners = Partners::of(&state.volumes);
@@ -52,6 +54,9 @@ pub(crate) fn sweep(
         found: &mut found,
     };
     for i in 0..n {
+        if i % HALT_EVERY == 0 && halt() {
+            break;
+        }
         let j = partners.draw(look.state.volumes[i], rng);
         if j == i || look.same(i, j) {
             continue;

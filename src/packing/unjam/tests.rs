@@ -61,7 +61,7 @@ fn a_sweep_lowers_the_energy_and_only_exchanges_places() {
     let (places, turns) = (sorted_places(&state), state.quaternions.clone());
     let before = energy(&mut state, big_s);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let (attempts, swaps) = sweep(&mut state, big_s, &mut rng).unwrap();
+    let (attempts, swaps) = sweep(&mut state, big_s, &mut rng, &|| false).unwrap();
     assert!(attempts > 100, "{attempts}");
     assert!(swaps > 0, "no swap kept of {attempts}");
     let after = energy(&mut state, big_s);
@@ -71,7 +71,7 @@ fn a_sweep_lowers_the_energy_and_only_exchanges_places() {
     // Sweeps again until one keeps no swap: the energy never rises.
     let mut last = after;
     for _ in 0..20 {
-        let (_, swaps) = sweep(&mut state, big_s, &mut rng).unwrap();
+        let (_, swaps) = sweep(&mut state, big_s, &mut rng, &|| false).unwrap();
         let now = energy(&mut state, big_s);
         assert!(now <= last, "{now} > {last}");
         last = now;
@@ -88,8 +88,40 @@ fn equal_spheres_have_nothing_to_swap() {
     state.wrap();
     let centres = state.centres.clone();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    assert_eq!(sweep(&mut state, 1.0, &mut rng).unwrap(), (0, 0));
+    assert_eq!(sweep(&mut state, 1.0, &mut rng, &|| false).unwrap(), (0, 0));
     assert_eq!(state.centres, centres);
+}
+
+/// The sweeps of both kinds of unjamming moves stop when told (the stop flag, the time
+/// limit: `HALT_EVERY`): no attempt, nothing moved, and a sweep that was told after its
+/// first block of grains attempts that block only.
+#[test]
+fn sweeps_stop_when_told() {
+    let mut state = scattered(POLY_SPHEROIDS);
+    state.wrap();
+    let (centres, turns) = (state.centres.clone(), state.quaternions.clone());
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    assert_eq!(sweep(&mut state, 1.0, &mut rng, &|| true).unwrap(), (0, 0));
+    let moves = monte_carlo::Moves {
+        rotation: crate::scene::Rotation::Free,
+        max_turn: std::f64::consts::PI,
+        contact_gap: 0.0,
+    };
+    let mut mc = monte_carlo::MonteCarlo::new(&state, 0.5);
+    let halted = mc.sweeps(&mut state, 0.5, 3, &moves, &mut rng, &|| true);
+    assert_eq!(halted.unwrap(), (0, 0));
+    assert_eq!((state.centres, state.quaternions), (centres, turns));
+    // 2 000 grains, told to stop at the second block: at most HALT_EVERY attempts.
+    let bigger = (POLY_SPHEROIDS.replace("grains = 150", "grains = 2000"))
+        .replace("[10.4, 10.4, 10.4]", "[24.6, 24.6, 24.6]");
+    let mut state = scattered(&bigger);
+    let asked = std::cell::Cell::new(0);
+    let second = || {
+        asked.set(asked.get() + 1);
+        asked.get() > 1
+    };
+    let (attempts, _) = sweep(&mut state, 1.0, &mut rng, &second).unwrap();
+    assert!(attempts > 0 && attempts <= HALT_EVERY as u64, "{attempts}");
 }
 
 fn pack_on(threads: usize, scene: &Scene, specs: &[GrainSpec]) -> Packing {
