@@ -146,6 +146,7 @@ pub fn pack(
         resolution: params.jam_resolution,
         stop,
         deadline: after(1.0),
+        // Set again just before the loop (below).
         started,
         give_way: None,
         progress,
@@ -176,7 +177,7 @@ pub fn pack(
     let (mut target_tried, mut guess) = (false, false);
     // Under a time limit, when the relaxations before the first clean state give way:
     // those above the target, then the target's own.
-    let (mut give_way_above, mut give_way_target) = (after(GIVE_WAY), after(GIVE_WAY_TARGET));
+    let (mut give_way_above, give_way_target) = (after(GIVE_WAY), after(GIVE_WAY_TARGET));
     // A mean FIRE step (the final check's reserve, a timed trial's share) counts from
     // here: the setup above is no step, and on 10 000 grains it could take most of a
     // short limit's reserve after the first step.
@@ -232,12 +233,9 @@ pub fn pack(
         });
         let guessed = std::mem::take(&mut guess);
         let gave_way = run.give_way.is_some_and(|d| Instant::now() >= d);
-        if gave_way {
-            *(if s > 1.0 {
-                &mut give_way_above
-            } else {
-                &mut give_way_target
-            }) = None;
+        // Each gives way once; once the target's own has, the search follows.
+        if gave_way && s > 1.0 {
+            give_way_above = None;
         }
         if overshoot.take().is_some() && matches!(outcome, Outcome::Stuck | Outcome::Budget) {
             s = 1.0;

@@ -252,14 +252,12 @@ fn why(packing: &Packing, scene: &Scene) -> String {
 /// relaxation gave way, 0.0000–0.59: BENCHMARKS.md, "Time limits shorter than the
 /// first relaxation, again").
 fn unfinished(packing: &Packing) -> &'static str {
-    match packing.trials.iter().any(|t| t.outcome == Outcome::Clean) {
-        true => "",
-        false => {
-            " before any relaxation came out clean, so the state kept is the last one \
-             shrunk until its deepest overlap is gone; a lower target_fraction, or more \
-             time, keeps a denser one"
-        }
+    if packing.trials.iter().any(|t| t.outcome == Outcome::Clean) {
+        return "";
     }
+    " before any relaxation came out clean, so the state kept is the last one shrunk \
+     until its deepest overlap is gone; a lower target_fraction, or more time, keeps a \
+     denser one"
 }
 
 /// "wrote a, b" or "wrote nothing".
