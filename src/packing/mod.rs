@@ -23,11 +23,14 @@
 //!    is at that band's deepest fraction, where it jams sooner; grains that do not turn jam lower
 //!    than spheres of their sizes unless aligned, `frozen_share`; frozen grains a little below
 //!    theirs are first pushed past it for a while, `OVERSHOOT`); after a stuck relaxation the state shrunk by
-//!    its smallest μ is a clean state at once, and the scale is bisected between the best clean
-//!    scale and the smallest stuck one until they are within `jam_resolution` (relative; a scene
-//!    parameter), the target itself tried once as soon as it lies between the clean end and the
-//!    midpoint (`tries_target`). Near the jamming point relaxations slow down without end (critical
-//!    slowing down), so each trial below the target has a budget of
+//!    its smallest μ is a clean state at once, and the scale is bisected between the best
+//!    clean scale and the smallest stuck one until they are within `jam_resolution`
+//!    (relative; a scene parameter), the target itself tried once as soon as it lies
+//!    between the clean end and the midpoint (`tries_target`); with
+//!    [`descent`](ProtocolParams::descent) (off by default) the scale first descends from
+//!    the first deep jam in short relaxations, each lower by the state's root-mean-square
+//!    overlap (module `descent`). Near the jamming point relaxations slow down without
+//!    end (critical slowing down), so each trial below the target has a budget of
 //!    [`trial_steps`](ProtocolParams::trial_steps) steps (times `effort`, a scene parameter, when
 //!    below 1), and one that runs out of it counts as jammed at that scale (below `effort = 1`, so
 //!    does the target's own relaxation far above the jamming point, *deep*, after four such
@@ -61,6 +64,7 @@
 //! every fraction reported, are the grains' own; the grains are written at their own
 //! size, and [`verify`] checks them with the gap.
 
+mod descent;
 mod effort;
 mod fire;
 mod forces;
@@ -91,7 +95,7 @@ use fire::{Context, Fire};
 use jamming::Patience;
 use neighbours::Neighbours;
 pub(crate) use snapshot::clean_scale;
-use snapshot::{finish, keep_denser, restore, Snapshot};
+use snapshot::{finish, keep_denser, restore, turn_back, Snapshot};
 use state::State;
 
 use crate::scene::GrainSpec;
@@ -175,6 +179,8 @@ pub fn pack(
     // The target is tried once out of turn (`tries_target`): a guess, which bounds the
     // search only if it jams on a plateau.
     let (mut target_tried, mut guess) = (false, false);
+    // From the first deep jam to the first clean state: the descent (module `descent`).
+    let (mut descending, mut from_jam) = (false, false);
     // Under a time limit, when the relaxations before the first clean state give way:
     // those above the target, then the target's own.
     let (mut give_way_above, give_way_target) = (after(GIVE_WAY), after(GIVE_WAY_TARGET));
@@ -197,7 +203,12 @@ pub fn pack(
             let timed = (run.time_left()).map_or(u64::MAX, |left| {
                 timed_steps(run.started.elapsed(), left, run.counters.fire_steps)
             });
-            trial_steps(&protocol, params.effort).min(timed)
+            let trial = trial_steps(&protocol, params.effort);
+            match descending {
+                true => descent::segment(trial, s),
+                false => trial,
+            }
+            .min(timed)
         };
         // Shallow relaxations from random positions creep (module `jamming`); below
         // `effort = 1` a creeping one is cut as soon as a trial's budget runs out, and
@@ -216,6 +227,9 @@ pub fn pack(
             (true, true) => give_way_above,
             (true, false) => give_way_target,
         };
+        if descending {
+            (fire.keep_step, fire.keep_velocity) = (true, true);
+        }
         let before = run.counters.fire_steps;
         let outcome = fire.relax(
             &mut state,
@@ -248,7 +262,10 @@ pub fn pack(
                 keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
                 break reason;
             }
-            Outcome::Clean => best = Some(Snapshot::of(&state, s.min(1.0))),
+            Outcome::Clean => {
+                best = Some(Snapshot::of(&state, s.min(1.0)));
+                descending = false;
+            }
             Outcome::Stuck | Outcome::Budget => {
                 keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
                 // A shallow first jam is a poor start for the search: compress further,
@@ -260,6 +277,10 @@ pub fn pack(
                 }
                 if !(guessed && outcome == Outcome::Budget) {
                     stuck = stuck.min(s);
+                }
+                // A state given way to a time limit is no jam to descend from.
+                if quenching && !gave_way && protocol.descent {
+                    (descending, from_jam) = (true, true);
                 }
             }
         }
@@ -273,7 +294,7 @@ pub fn pack(
                 break StopReason::Jammed;
             }
             cycles_left -= 1;
-            stuck = f64::INFINITY;
+            (stuck, descending) = (f64::INFINITY, false);
             // The cycles' relaxations judge with the half window.
             let half_window = (tuning.fire.window as f64 * CYCLE_WINDOW).round() as u64;
             if unjammer.anneals() {
@@ -305,6 +326,19 @@ pub fn pack(
             unjammer.before_recompression(&mut state, &mut fire, &mut run, &protocol, s)?;
             fire.set_window(half_window);
             continue;
+        }
+        if descending {
+            // Its first segment goes on at the jam's own scale.
+            let bounds = (protocol.margin, params.jam_resolution, low);
+            let next = match std::mem::take(&mut from_jam) {
+                true => Some(s),
+                false => descent::next(s, &run.forces, &state, bounds),
+            };
+            if let Some(next) = next {
+                s = next;
+                continue;
+            }
+            descending = false;
         }
         guess = !target_tried && tries_target(low, stuck);
         target_tried |= guess;
@@ -338,41 +372,6 @@ pub fn pack(
     )?;
     packing.trials = trials;
     Ok(packing)
-}
-
-/// Turns the grains of a clean snapshot back toward their drawn orientations as far as
-/// their neighbours let them: `restore_steps` FIRE steps with a pull of stiffness
-/// `restore_stiffness` ([`ProtocolParams`]), then a plain relaxation at the same
-/// scale. Returns the state if that ends clean (within `budget` steps in all), `None`
-/// otherwise.
-fn turn_back(
-    state: &mut State,
-    fire: &mut Fire,
-    run: &mut Context<'_>,
-    protocol: &ProtocolParams,
-    snapshot: &Snapshot,
-    budget: u64,
-) -> Result<Option<Snapshot>, PackError> {
-    let (steps, big_s) = (
-        protocol.restore_steps,
-        snapshot.scale * (1.0 + protocol.margin),
-    );
-    if budget <= steps {
-        return Ok(None);
-    }
-    restore(state, snapshot)?;
-    let s = snapshot.scale;
-    fire.restore = protocol.restore_stiffness;
-    run.counters.steps += 1;
-    let pulled = fire.relax(state, run, s, big_s, steps);
-    fire.restore = 0.0;
-    if pulled? == Outcome::Interrupted {
-        return Ok(None);
-    }
-    run.counters.steps += 1;
-    let left = (budget - steps).min(protocol.stage_steps);
-    let settled = fire.relax(state, run, s, big_s, left)?;
-    Ok((settled == Outcome::Clean).then(|| Snapshot::of(state, s)))
 }
 
 /// Why a relaxation stopped early: the time limit if it has run out, else the caller.

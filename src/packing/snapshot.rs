@@ -2,9 +2,9 @@
 //! state when a later phase starts from it, and finally written out as packed grains
 //! and checked.
 
-use super::fire::Context;
+use super::fire::{Context, Fire};
 use super::grains::{PackedGrain, StopReason};
-use super::job::{Counters, Packing};
+use super::job::{Counters, Outcome, Packing};
 use super::state::State;
 use super::verify::verify;
 use super::PackError;
@@ -123,4 +123,39 @@ pub(super) fn finish(
         trials: Vec::new(),
         verification,
     })
+}
+
+/// Turns the grains of a clean snapshot back toward their drawn orientations as far as
+/// their neighbours let them: `restore_steps` FIRE steps with a pull of stiffness
+/// `restore_stiffness` ([`ProtocolParams`]), then a plain relaxation at the same
+/// scale. Returns the state if that ends clean (within `budget` steps in all), `None`
+/// otherwise.
+pub(super) fn turn_back(
+    state: &mut State,
+    fire: &mut Fire,
+    run: &mut Context<'_>,
+    protocol: &ProtocolParams,
+    snapshot: &Snapshot,
+    budget: u64,
+) -> Result<Option<Snapshot>, PackError> {
+    let (steps, big_s) = (
+        protocol.restore_steps,
+        snapshot.scale * (1.0 + protocol.margin),
+    );
+    if budget <= steps {
+        return Ok(None);
+    }
+    restore(state, snapshot)?;
+    let s = snapshot.scale;
+    fire.restore = protocol.restore_stiffness;
+    run.counters.steps += 1;
+    let pulled = fire.relax(state, run, s, big_s, steps);
+    fire.restore = 0.0;
+    if pulled? == Outcome::Interrupted {
+        return Ok(None);
+    }
+    run.counters.steps += 1;
+    let left = (budget - steps).min(protocol.stage_steps);
+    let settled = fire.relax(state, run, s, big_s, left)?;
+    Ok((settled == Outcome::Clean).then(|| Snapshot::of(state, s)))
 }

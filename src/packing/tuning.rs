@@ -101,6 +101,16 @@ pub struct ProtocolParams {
     /// FIRE steps of the pull; more turn the grains back little further (200, the
     /// default: median turn 9.7°, 500: 8.2° on kanapy's scene, at 1.5 times the cost).
     pub restore_steps: u64,
+    /// From the first deep jam, lower the scale in short relaxations that keep FIRE's
+    /// velocities, each by the state's root-mean-square overlap (module `descent`),
+    /// before bisecting what is left, instead of bisecting from there. Off by default:
+    /// on 10 000 equal spheres asked 0.70 it jams as dense in 2.8–3.0 times the FIRE
+    /// steps of a reachable 0.62 instead of 3.9–6.8, and the family of starts
+    /// (`benches/density/start/`) in 0.55 of the steps at −0.00014 of packing fraction
+    /// on the mean, but three shipped configs lose 0.0009–0.0024 (polydisperse
+    /// concrete, spheroids free to turn; BENCHMARKS.md, "A descent instead of a
+    /// bisection").
+    pub descent: bool,
 }
 
 impl Default for ProtocolParams {
@@ -114,6 +124,7 @@ impl Default for ProtocolParams {
             shrink_margin: 4.0 * contact_gap,
             restore_stiffness: 0.1,
             restore_steps: 200,
+            descent: false,
         }
     }
 }

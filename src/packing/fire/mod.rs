@@ -117,6 +117,10 @@ pub(crate) struct Fire {
     /// the step again (10⁵ grains: 85–89 steps at the target instead of 106–111;
     /// BENCHMARKS.md, "Issue 26: against b030b67 again").
     pub keep_step: bool,
+    /// Set before a relaxation to go on with the velocities (and FIRE's mixing) the
+    /// last one ended with, as one relaxation whose scale moved; cleared by it. For
+    /// the descent's segments (module `descent`).
+    pub keep_velocity: bool,
     /// The square root of each grain's mass (see [`masses`]).
     root_mass: Vec<f64>,
     /// Each grain's force over its root mass.
@@ -142,6 +146,7 @@ impl Fire {
             turns: Vec::new(),
             deep: false,
             keep_step: false,
+            keep_velocity: false,
             patience: Patience::NONE,
             root_mass: Vec::new(),
             scaled: Vec::new(),
@@ -173,16 +178,18 @@ impl Fire {
         let rotate = run.rotation != Rotation::None;
         let turning = (run.rotation, run.max_turn);
         let n = state.len();
-        self.velocity.clear();
-        self.velocity.resize(n, [0.0; 3]);
-        self.spin.clear();
-        self.spin.resize(n, [0.0; 3]);
         let p = self.params;
+        if !std::mem::take(&mut self.keep_velocity) || self.velocity.len() != n {
+            self.velocity.clear();
+            self.velocity.resize(n, [0.0; 3]);
+            self.spin.clear();
+            self.spin.resize(n, [0.0; 3]);
+            self.alpha = p.alpha_start;
+            self.positive = 0;
+        }
         if !std::mem::take(&mut self.keep_step) {
             self.dt = p.dt_start;
         }
-        self.alpha = p.alpha_start;
-        self.positive = 0;
         // A contact overlapping by the margin has energy (2ρ (S − s))², ρ the smallest
         // semi-axis: the jamming test's unit.
         let mean_rho2 = state

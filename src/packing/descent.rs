@@ -1,0 +1,105 @@
+//! The descent from the first deep jam to the jamming point, with
+//! [`ProtocolParams::descent`](super::ProtocolParams::descent) (off by default).
+//!
+//! The search used to bisect the scale between the densest clean state and the
+//! smallest jammed one from its first jam on, each trial a relaxation that had to come
+//! out clean, jam on a plateau (at least 400 FIRE steps, `jamming::MIN_WINDOWS`) or run
+//! out of its budget (1 000 steps) before the next began. Near the jamming point most
+//! did one of the last two: 10 000 equal spheres asked for 0.70 took 3.9–6.8 times the
+//! FIRE steps of the same spheres asked for a reachable 0.62.
+//!
+//! The descent decompresses the jammed state instead, the way jammed packings are
+//! followed down to their jamming point (O'Hern et al., *Phys. Rev. E* 68, 011306,
+//! 2003): in **segments** of [`SEGMENT`] of a trial's budget, FIRE's velocities and
+//! step kept from one to the next as in one relaxation whose scale moves, the first at
+//! the jam's own scale and each next one lower by the state's root-mean-square overlap
+//! ([`STEP`]; at most [`MAX_STEP`], at least [`FLOOR`] resolutions). Above the jamming
+//! point the relaxed overlaps shrink in proportion to the distance to it, so the steps
+//! shrink as the descent nears it. Each segment that does not come out clean bounds
+//! the search from above and leaves its state shrunk until apart as a clean one (as
+//! every stuck trial does), so the descent ends when a segment comes out clean or the
+//! two bounds meet; the bisection closes what is left. The recompression cycles of
+//! `effort` ≥ 1.5 start from the densest state as before and bisect.
+//!
+//! Same spheres, seeds 1–8: 2.8–3.0 times the reachable scene's FIRE steps (3.3–3.6 in
+//! time) at the bisection's densities (−0.0007 to +0.0006); the family of starts
+//! (`benches/density/start/`) in 0.55 of the steps and 0.69 of the time, −0.00014 on the
+//! mean (worst −0.0018, lognormal spheres whose target is their jamming point). It is
+//! off by default because three shipped configs lose density with it at `effort = 1`:
+//! `fuller_concrete.toml` 0.0024 (also given 10 s), `density_spheroids.toml` (free to
+//! turn) 0.0013, `density_spheres.toml` 0.0009. BENCHMARKS.md, "A descent instead of a
+//! bisection".
+
+use super::forces::Forces;
+use super::state::State;
+
+/// A segment's FIRE steps, as a share of a search trial's budget (`trial_steps`):
+/// 120 at `effort = 1`. How well each segment relaxes sets how dense the descent ends:
+/// on 10 000 equal spheres, 200 steps with no [`MAX_STEP`] ended 0.0001 below the
+/// bisection, 150 with a largest step of 2 % 0.0005 above it at 3.2 times a reachable
+/// scene's steps (BENCHMARKS.md, "A descent instead of a bisection").
+pub(super) const SEGMENT: f64 = 0.15;
+
+/// A segment's scale lies below the last by this many times the grains' root-mean-square
+/// overlap there (relative to the scale, the margin's share taken off). 1: the overlaps
+/// of a jammed state vanish at about its jamming point.
+pub(super) const STEP: f64 = 1.0;
+
+/// The largest step, relative to the scale: from a deep jam (overlaps of 5 % at
+/// 1.06) one step would land past the jamming point's neighbourhood in a state
+/// relaxed far above it, and a jam relaxed on the way down is denser.
+pub(super) const MAX_STEP: f64 = 0.02;
+
+/// The smallest step, in units of the bisection's resolution (`jam_resolution`), a
+/// little under one so that the last step's bracket closes the search at once.
+pub(super) const FLOOR: f64 = 0.9;
+
+/// From above the target, the descent tries the target itself, with a whole trial's
+/// budget, as soon as its estimate of the jamming point (the scale less the
+/// root-mean-square overlap) lies above the target or below it by at most this many
+/// resolutions: a target below the jamming point is then reached in one relaxation
+/// from a state relaxed above it (500 equal spheres asked 0.63, 0.979 of their
+/// estimated jamming point: 832 FIRE steps with the bisection, 1 450 with the descent
+/// stepping down to it) instead of stepping down to it, and one just above it is
+/// tried once, as the bisection did (`effort::tries_target`).
+pub(super) const TARGET_BELOW: f64 = 4.0;
+
+/// The FIRE steps of a segment at scale `s` for a search trial's budget `trial`: a
+/// whole trial at the target itself.
+pub(super) fn segment(trial: u64, s: f64) -> u64 {
+    if s == 1.0 {
+        trial
+    } else {
+        ((trial as f64 * SEGMENT).ceil() as u64).max(1)
+    }
+}
+
+/// The next segment's scale after one at `s` that did not come out clean, from the
+/// forces evaluated there at `s (1 + margin)`; `None` when that would not lie above
+/// the densest clean scale `low` by more than the resolution (the bisection takes
+/// over). From above the target, the target itself when the step would end near or
+/// above it ([`TARGET_BELOW`]).
+pub(super) fn next(
+    s: f64,
+    forces: &Forces,
+    state: &State,
+    (margin, resolution, low): (f64, f64, f64),
+) -> Option<f64> {
+    let n = state.len() as f64;
+    let rho2 = state
+        .shapes
+        .iter()
+        .map(|e| e.inscribed_radius().powi(2))
+        .sum::<f64>()
+        / n;
+    // A pair overlapping by `δ` of the scale has energy `(2ρ δ)²`
+    // (`fire::Fire::relax`).
+    let pairs = forces.overlaps.max(1) as f64;
+    let rms = (forces.energy / (pairs * 4.0 * rho2)).sqrt() - s * margin;
+    let step = (STEP * rms).max(FLOOR * resolution * s);
+    let next = match s > 1.0 && s - step >= 1.0 - TARGET_BELOW * resolution {
+        true => 1.0,
+        false => s - step.min(MAX_STEP * s),
+    };
+    (next > low * (1.0 + resolution)).then_some(next)
+}
