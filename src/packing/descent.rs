@@ -34,10 +34,11 @@ use super::forces::Forces;
 use super::state::State;
 
 /// A segment's FIRE steps, as a share of a search trial's budget (`trial_steps`):
-/// 120 at `effort = 1`. How well each segment relaxes sets how dense the descent ends:
-/// on 10 000 equal spheres, 200 steps with no [`MAX_STEP`] ended 0.0001 below the
-/// bisection, 150 with a largest step of 2 % 0.0005 above it at 3.2 times a reachable
-/// scene's steps (BENCHMARKS.md, "A descent instead of a bisection").
+/// 150 at `effort = 1`. How well each segment relaxes sets how dense the descent ends:
+/// on 10 000 equal spheres, 150 (this) ended 0.00016 below the bisection at 2.8–3.0
+/// times a reachable scene's steps, 100 with steps of 0.3 of the overlap 0.0007 above
+/// it at 4.6–5.7 times, 25 with steps of 0.15 of it 0.0018 below (BENCHMARKS.md, "A
+/// descent instead of a bisection").
 pub(super) const SEGMENT: f64 = 0.15;
 
 /// A segment's scale lies below the last by this many times the grains' root-mean-square
@@ -59,9 +60,9 @@ pub(super) const FLOOR: f64 = 0.9;
 /// root-mean-square overlap) lies above the target or below it by at most this many
 /// resolutions: a target below the jamming point is then reached in one relaxation
 /// from a state relaxed above it (500 equal spheres asked 0.63, 0.979 of their
-/// estimated jamming point: 832 FIRE steps with the bisection, 1 450 with the descent
-/// stepping down to it) instead of stepping down to it, and one just above it is
-/// tried once, as the bisection did (`effort::tries_target`).
+/// estimated jamming point: 832 FIRE steps with the bisection, 927 with the descent,
+/// 1 450 when it stepped down to it), and one just above it is tried once, as the
+/// bisection did (`effort::tries_target`).
 pub(super) const TARGET_BELOW: f64 = 4.0;
 
 /// The FIRE steps of a segment at scale `s` for a search trial's budget `trial`: a

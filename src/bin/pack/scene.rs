@@ -246,27 +246,19 @@ fn why(packing: &Packing, scene: &Scene) -> String {
     }
 }
 
-/// What a stop before any relaxation came out clean means, where the state kept is
-/// the last one shrunk until no grains overlap, sized by its deepest overlap, and that
-/// cost more than [`FAR_BELOW`] of the scale (10 000 grains given 0.3–1 s kept
-/// 0.57–0.60 of 0.60 that way, nearly apart; before the target's relaxation gave way,
-/// 0.0000–0.59: BENCHMARKS.md, "Time limits shorter than the first relaxation,
-/// again"). The descent to the jamming point ends in such a state, nearly apart, with
-/// no relaxation clean: that is no unfinished run.
+/// What a stop before any relaxation came out clean means: the state kept is the last
+/// one shrunk until no grains overlap, sized by its deepest overlap (10 000 grains
+/// given 0.3–1 s kept 0.57–0.60 of 0.60 that way, nearly apart; before the target's
+/// relaxation gave way, 0.0000–0.59: BENCHMARKS.md, "Time limits shorter than the
+/// first relaxation, again").
 fn unfinished(packing: &Packing) -> &'static str {
-    let least = (packing.trials.iter().map(|t| t.scale)).fold(f64::INFINITY, f64::min);
-    let clean = packing.trials.iter().any(|t| t.outcome == Outcome::Clean);
-    if clean || packing.scale >= FAR_BELOW * least {
+    if packing.trials.iter().any(|t| t.outcome == Outcome::Clean) {
         return "";
     }
     " before any relaxation came out clean, so the state kept is the last one shrunk \
      until its deepest overlap is gone; a lower target_fraction, or more time, keeps a \
      denser one"
 }
-
-/// A state kept below this share of the least scale any relaxation was at was shrunk
-/// by a deep overlap: the run was stopped far from any jamming point.
-const FAR_BELOW: f64 = 0.95;
 
 /// "wrote a, b" or "wrote nothing".
 fn describe(written: &[PathBuf]) -> String {
