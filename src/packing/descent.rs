@@ -23,12 +23,11 @@
 //!
 //! Same spheres, seeds 1–8: 2.8–3.0 times the reachable scene's FIRE steps (3.3–3.6 in
 //! time) at the bisection's densities (−0.0007 to +0.0006); the family of starts
-//! (`benches/density/start/`) in 0.55 of the steps and 0.69 of the time, −0.00014 on the
-//! mean (worst −0.0018, lognormal spheres whose target is their jamming point). It is
-//! off by default because three shipped configs lose density with it at `effort = 1`:
-//! `fuller_concrete.toml` 0.0024 (also given 10 s), `density_spheroids.toml` (free to
-//! turn) 0.0013, `density_spheres.toml` 0.0009. BENCHMARKS.md, "A descent instead of a
-//! bisection".
+//! (`benches/density/start/`) in 0.63 of the steps, +0.00026 on the mean (worst
+//! −0.0005); the three shipped configs that jam, over seeds 1–8, +0.00015 to +0.0005 on
+//! the mean in 0.58–0.83 of the steps. It is still off by default: every figure the
+//! docs quote for a scene that jams would move and has to be measured again first.
+//! BENCHMARKS.md, "A descent instead of a bisection".
 
 use super::forces::Forces;
 use super::state::State;
@@ -62,7 +61,11 @@ pub(super) const FLOOR: f64 = 0.9;
 /// from a state relaxed above it (500 equal spheres asked 0.63, 0.979 of their
 /// estimated jamming point: 832 FIRE steps with the bisection, 927 with the descent,
 /// 1 450 when it stepped down to it), and one just above it is tried once, as the
-/// bisection did (`effort::tries_target`).
+/// bisection did (`effort::tries_target`). A target that does not come out clean is
+/// left for the scale the descent came from, as the bisection's next trial climbs back
+/// above a failed target: from the target's state the jam there is deeper, and the
+/// descent from it denser (`fuller_concrete.toml`: 0.6796 as the bisection, where
+/// going on down from the target ended at 0.6772).
 pub(super) const TARGET_BELOW: f64 = 4.0;
 
 /// The FIRE steps of a segment at scale `s` for a search trial's budget `trial`: a
@@ -79,12 +82,13 @@ pub(super) fn segment(trial: u64, s: f64) -> u64 {
 /// forces evaluated there at `s (1 + margin)`; `None` when that would not lie above
 /// the densest clean scale `low` by more than the resolution (the bisection takes
 /// over). From above the target, the target itself when the step would end near or
-/// above it ([`TARGET_BELOW`]).
+/// above it ([`TARGET_BELOW`]) and `target` (not yet tried).
 pub(super) fn next(
     s: f64,
     forces: &Forces,
     state: &State,
     (margin, resolution, low): (f64, f64, f64),
+    target: bool,
 ) -> Option<f64> {
     let n = state.len() as f64;
     let rho2 = state
@@ -98,7 +102,7 @@ pub(super) fn next(
     let pairs = forces.overlaps.max(1) as f64;
     let rms = (forces.energy / (pairs * 4.0 * rho2)).sqrt() - s * margin;
     let step = (STEP * rms).max(FLOOR * resolution * s);
-    let next = match s > 1.0 && s - step >= 1.0 - TARGET_BELOW * resolution {
+    let next = match target && s > 1.0 && s - step >= 1.0 - TARGET_BELOW * resolution {
         true => 1.0,
         false => s - step.min(MAX_STEP * s),
     };

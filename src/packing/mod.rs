@@ -180,7 +180,7 @@ pub fn pack(
     // search only if it jams on a plateau.
     let (mut target_tried, mut guess) = (false, false);
     // From the first deep jam to the first clean state: the descent (module `descent`).
-    let (mut descending, mut from_jam) = (false, false);
+    let (mut descending, mut from_jam, mut above) = (false, false, None);
     // Under a time limit, when the relaxations before the first clean state give way:
     // those above the target, then the target's own.
     let (mut give_way_above, give_way_target) = (after(GIVE_WAY), after(GIVE_WAY_TARGET));
@@ -328,13 +328,18 @@ pub fn pack(
             continue;
         }
         if descending {
-            // Its first segment goes on at the jam's own scale.
+            // Its first segment goes on at the jam's own scale; a target tried and not
+            // clean gives way to the scale the descent came from (module `descent`).
             let bounds = (protocol.margin, params.jam_resolution, low);
-            let next = match std::mem::take(&mut from_jam) {
-                true => Some(s),
-                false => descent::next(s, &run.forces, &state, bounds),
+            let next = match (std::mem::take(&mut from_jam), s == 1.0) {
+                (true, _) => Some(s),
+                (false, true) if above.is_some() => above.take(),
+                _ => descent::next(s, &run.forces, &state, bounds, !target_tried),
             };
             if let Some(next) = next {
+                if next == 1.0 && s > 1.0 {
+                    (above, target_tried) = (Some(s), true);
+                }
                 s = next;
                 continue;
             }

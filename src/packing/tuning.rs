@@ -103,13 +103,12 @@ pub struct ProtocolParams {
     pub restore_steps: u64,
     /// From the first deep jam, lower the scale in short relaxations that keep FIRE's
     /// velocities, each by the state's root-mean-square overlap (module `descent`),
-    /// before bisecting what is left, instead of bisecting from there. Off by default:
-    /// on 10 000 equal spheres asked 0.70 it jams as dense in 2.8–3.0 times the FIRE
-    /// steps of a reachable 0.62 instead of 3.9–6.8, and the family of starts
-    /// (`benches/density/start/`) in 0.55 of the steps at −0.00014 of packing fraction
-    /// on the mean, but three shipped configs lose 0.0009–0.0024 (polydisperse
-    /// concrete, spheroids free to turn; BENCHMARKS.md, "A descent instead of a
-    /// bisection").
+    /// before bisecting what is left, instead of bisecting from there. Off by default
+    /// until every figure quoted for scenes that jam is measured again with it: on
+    /// 10 000 equal spheres asked 0.70 it jams as dense in 2.8–3.0 times the FIRE steps
+    /// of a reachable 0.62 instead of 3.9–6.8, the family of starts
+    /// (`benches/density/start/`) in 0.63 of the steps at +0.00026 of packing fraction
+    /// on the mean (BENCHMARKS.md, "A descent instead of a bisection").
     pub descent: bool,
 }
 
