@@ -3,7 +3,7 @@
 
 use super::fire::{Context, Fire};
 use super::neighbours::Neighbours;
-use super::tests::{drawn, job as job_of, pack_scene, pack_with, scattered};
+use super::tests::{drawn, job, pack_scene, pack_with, scattered};
 use super::*;
 use crate::contact::Dimension;
 use crate::scene::{sphere_close_packing, Rotation};
@@ -233,7 +233,7 @@ fn the_descent_jams_as_dense_as_the_bisection_in_fewer_steps() {
         let mut tuning = Tuning::default();
         tuning.protocol.descent = descent;
         pack(
-            &job_of(&scene, &specs, &tuning),
+            &job(&scene, &specs, &tuning),
             &AtomicBool::new(false),
             &mut |_| {},
         )
