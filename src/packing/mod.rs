@@ -27,7 +27,7 @@
 //!    clean scale and the smallest stuck one until they are within `jam_resolution`
 //!    (relative; a scene parameter), the target itself tried once as soon as it lies
 //!    between the clean end and the midpoint (`tries_target`); with
-//!    [`descent`](ProtocolParams::descent) (off by default) the scale first descends from
+//!    [`descent`](ProtocolParams::descent) (the default) the scale first descends from
 //!    the first deep jam in short relaxations, each lower by the state's root-mean-square
 //!    overlap (module `descent`). Near the jamming point relaxations slow down without
 //!    end (critical slowing down), so each trial below the target has a budget of
@@ -180,7 +180,7 @@ pub fn pack(
     // search only if it jams on a plateau.
     let (mut target_tried, mut guess) = (false, false);
     // From the first deep jam to the first clean state: the descent (module `descent`).
-    let (mut descending, mut from_jam, mut above) = (false, false, None);
+    let (mut descending, mut from_jam, mut above, mut short) = (false, false, None, false);
     // Under a time limit, when the relaxations before the first clean state give way:
     // those above the target, then the target's own.
     let (mut give_way_above, give_way_target) = (after(GIVE_WAY), after(GIVE_WAY_TARGET));
@@ -203,10 +203,9 @@ pub fn pack(
             let timed = (run.time_left()).map_or(u64::MAX, |left| {
                 timed_steps(run.started.elapsed(), left, run.counters.fire_steps)
             });
-            let trial = trial_steps(&protocol, params.effort);
             match descending {
-                true => descent::segment(trial, s),
-                false => trial,
+                true => descent::segment(&protocol, params.effort, s, short),
+                false => trial_steps(&protocol, params.effort),
             }
             .min(timed)
         };
@@ -332,11 +331,12 @@ pub fn pack(
             // clean gives way to the scale the descent came from (module `descent`).
             let bounds = (protocol.margin, params.jam_resolution, low);
             let next = match (std::mem::take(&mut from_jam), s == 1.0) {
-                (true, _) => Some(s),
-                (false, true) if above.is_some() => above.take(),
+                (true, _) => Some((s, true)),
+                (false, true) if above.is_some() => above.take().map(|s| (s, false)),
                 _ => descent::next(s, &run.forces, &state, bounds, !target_tried),
             };
-            if let Some(next) = next {
+            if let Some((next, next_short)) = next {
+                short = next_short;
                 if next == 1.0 && s > 1.0 {
                     (above, target_tried) = (Some(s), true);
                 }

@@ -195,12 +195,11 @@ fn the_loop_keeps_time_for_the_final_check() {
 }
 
 /// A relaxation interrupted inside the search leaves its state, shrunk until apart, as
-/// the result where that is denser than the densest clean trial before it: 1 000 equal
+/// the result where that is denser than the densest state kept before it: 1 000 equal
 /// spheres asked 0.70, stopped half way through each trial in turn, keep a clean state
-/// never less dense than the clean trials before the stop, and denser where the stop
-/// falls in a trial on its way to clean (its overlaps already small: 0.634 and 0.641
-/// where the clean trials before kept 0.622 and 0.641; the stuck trials' overlaps at
-/// half way shrink to less than the clean trial below them).
+/// never less dense than when stopped at that trial's start, and denser in most trials
+/// (the descent's segments, whose overlaps shrink as they relax; without the shrunk
+/// state kept, none would be).
 #[test]
 fn an_interrupted_trial_keeps_its_state_shrunk_where_denser() {
     let (scene, specs) = drawn(
@@ -214,13 +213,7 @@ fn an_interrupted_trial_keeps_its_state_shrunk_where_denser() {
         &mut |_| {},
     )
     .unwrap();
-    let mut gained = 0;
-    for (k, trial) in plain.trials.iter().enumerate().skip(1) {
-        let earlier = &plain.trials[..k];
-        let at = earlier.iter().map(|t| t.fire_steps).sum::<u64>() + trial.fire_steps / 2;
-        let clean = (earlier.iter().filter(|t| t.outcome == Outcome::Clean))
-            .map(|t| t.fraction)
-            .fold(0.0, f64::max);
+    let stopped_at = |at: u64| {
         let stop = AtomicBool::new(false);
         let stopped = pack(&job(&scene, &specs, &tuning), &stop, &mut |p| {
             if p.step >= at {
@@ -231,17 +224,22 @@ fn an_interrupted_trial_keeps_its_state_shrunk_where_denser() {
         assert_eq!(stopped.stop, StopReason::Interrupted);
         assert!(
             stopped.verification.is_clean(),
-            "{k}: {:?}",
+            "{at}: {:?}",
             stopped.verification
         );
-        assert!(
-            stopped.fraction >= clean,
-            "{k}: {} < {clean}",
-            stopped.fraction
-        );
-        if trial.outcome == Outcome::Clean && clean > 0.0 && stopped.fraction > clean {
-            gained += 1;
-        }
+        stopped.fraction
+    };
+    let mut gained = 0;
+    for (k, trial) in plain.trials.iter().enumerate().skip(1) {
+        let start = plain.trials[..k].iter().map(|t| t.fire_steps).sum::<u64>();
+        let (before, within) = (stopped_at(start), stopped_at(start + trial.fire_steps / 2));
+        assert!(within >= before, "{k}: {within} < {before}");
+        gained += usize::from(within > before);
     }
-    assert_eq!(gained, 2, "{:?}", plain.trials);
+    let trials = plain.trials.len() - 1;
+    assert!(
+        2 * gained >= trials,
+        "{gained} of {trials}: {:?}",
+        plain.trials
+    );
 }

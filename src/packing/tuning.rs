@@ -103,12 +103,11 @@ pub struct ProtocolParams {
     pub restore_steps: u64,
     /// From the first deep jam, lower the scale in short relaxations that keep FIRE's
     /// velocities, each by the state's root-mean-square overlap (module `descent`),
-    /// before bisecting what is left, instead of bisecting from there. Off by default
-    /// until every figure quoted for scenes that jam is measured again with it: on
-    /// 10 000 equal spheres asked 0.70 it jams as dense in 2.8–3.0 times the FIRE steps
-    /// of a reachable 0.62 instead of 3.9–6.8, the family of starts
-    /// (`benches/density/start/`) in 0.63 of the steps at +0.00026 of packing fraction
-    /// on the mean (BENCHMARKS.md, "A descent instead of a bisection").
+    /// before bisecting what is left, instead of bisecting from there (on by default;
+    /// off, the search of the releases before). 10 000 equal spheres asked 0.70 jam as
+    /// dense in 2.7–2.9 times the time of a reachable 0.62 instead of 3.9–6.5, the
+    /// family of starts (`benches/density/start/`) in 0.69 of the time at +0.00003 of
+    /// packing fraction on the mean (BENCHMARKS.md, "The descent by default").
     pub descent: bool,
 }
 
@@ -123,7 +122,7 @@ impl Default for ProtocolParams {
             shrink_margin: 4.0 * contact_gap,
             restore_stiffness: 0.1,
             restore_steps: 200,
-            descent: false,
+            descent: true,
         }
     }
 }
