@@ -104,10 +104,12 @@ pub struct ProtocolParams {
     /// From the first deep jam, lower the scale in short relaxations that keep FIRE's
     /// velocities, each by the state's root-mean-square overlap (module `descent`),
     /// before bisecting what is left, instead of bisecting from there (on by default;
-    /// off, the search of the releases before). 10 000 equal spheres asked 0.70 jam as
-    /// dense in 2.7–2.9 times the time of a reachable 0.62 instead of 3.9–6.5, the
-    /// family of starts (`benches/density/start/`) in 0.69 of the time at +0.00003 of
-    /// packing fraction on the mean (BENCHMARKS.md, "The descent by default").
+    /// off, the bisection alone, as until 2026-11-28). 10 000 equal spheres asked 0.70
+    /// jam as dense in 2.7–2.9 times the time of a reachable 0.62 instead of 3.9–6.5,
+    /// the family of starts (`benches/density/start/`) in 0.69 of the time at +0.00003
+    /// of packing fraction on the mean; grains that relax slowly near their jamming
+    /// point lose a little (lognormal spheres 0.0009 at `effort = 1`, in half the time;
+    /// BENCHMARKS.md, "The descent by default").
     pub descent: bool,
 }
 

@@ -7,7 +7,8 @@ pub struct PackingParams {
     /// Step limit: the loop stops with the reason "step limit" after this many FIRE
     /// steps in all. Default 100 000.
     pub max_steps: u64,
-    /// When the target cannot be reached, the loop bisects the scale between the best
+    /// When the target cannot be reached, the loop descends from its first jam (in
+    /// steps of at least 0.9 of this), then bisects the scale between the best
     /// overlap-free one and the smallest jammed one until they are this close
     /// (relative). In `(0, 0.1]`; default 5 · 10⁻⁴ (0.15 % of packing fraction).
     pub jam_resolution: f64,
