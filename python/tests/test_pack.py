@@ -150,10 +150,14 @@ def test_bad_arguments_raise(kwargs, error):
 def test_ctrl_c_raises_keyboard_interrupt_within_a_second_and_the_process_goes_on():
     # A scene that takes several seconds (about 32 000 grains; 14 000 packed in 1.1 s by
     # 2026-11-27, too near the interrupt), interrupted after 1 s by a SIGINT sent to the
-    # process, as Ctrl-C in a terminal sends it.
+    # process, as Ctrl-C in a terminal sends it. Python's own handler is installed
+    # first: a process started in the background by a shell without job control
+    # inherits SIGINT ignored, and Python then leaves it ignored (a CI run started so
+    # failed here with the pack never interrupted).
     script = textwrap.dedent(
         """
         import os, signal, threading, time, json, sys
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         import grainpack as gp
         scene = gp.Scene.from_toml(sys.argv[1])
         big = gp.Scene.from_toml(open(sys.argv[1]).read().replace("[65.0, 65.0, 65.0]", "[260.0, 260.0, 260.0]"))
