@@ -30,7 +30,6 @@
 
 use super::effort::trial_steps;
 use super::forces::Forces;
-use super::state::State;
 use super::ProtocolParams;
 
 /// A segment's FIRE steps, as a share of a search trial's budget (`trial_steps`):
@@ -103,24 +102,17 @@ pub(super) fn segment(protocol: &ProtocolParams, effort: f64, s: f64, short: boo
 }
 
 /// The next segment's scale after one at `s` that did not come out clean, from the
-/// forces evaluated there at `s (1 + margin)`; `None` when that would not lie above
+/// forces evaluated there at `s (1 + margin)` and the grains' mean squared inscribed
+/// radius `rho2` (`Fire::mean_rho2`); `None` when that would not lie above
 /// the densest clean scale `low` by more than the resolution (the bisection takes
 /// over). From above the target, the target itself when the step would end near or
 /// above it ([`TARGET_BELOW`]) and `target` (not yet tried).
 pub(super) fn next(
     s: f64,
-    forces: &Forces,
-    state: &State,
+    (forces, rho2): (&Forces, f64),
     (margin, resolution, low): (f64, f64, f64),
     target: bool,
 ) -> Option<(f64, bool)> {
-    let n = state.len() as f64;
-    let rho2 = state
-        .shapes
-        .iter()
-        .map(|e| e.inscribed_radius().powi(2))
-        .sum::<f64>()
-        / n;
     // A pair overlapping by `δ` of the scale has energy `(2ρ δ)²`
     // (`fire::Fire::relax`).
     let pairs = forces.overlaps.max(1) as f64;

@@ -333,7 +333,7 @@ pub fn pack(
             let next = match (std::mem::take(&mut from_jam), s == 1.0) {
                 (true, _) => Some((s, true)),
                 (false, true) if above.is_some() => above.take().map(|s| (s, false)),
-                _ => descent::next(s, &run.forces, &state, bounds, !target_tried),
+                _ => descent::next(s, (&run.forces, fire.mean_rho2), bounds, !target_tried),
             };
             if let Some((next, next_short)) = next {
                 short = next_short;
