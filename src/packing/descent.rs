@@ -91,7 +91,7 @@ pub(super) const LEAST_EFFORT: f64 = 0.5;
 /// The FIRE steps of a segment at scale `s` at `effort`: at the target itself a whole
 /// search trial's budget (`effort::trial_steps`), else [`SEGMENT`] of that budget at
 /// `effort` (at least [`LEAST_EFFORT`]), [`SHORT`] of it when `short`.
-pub(super) fn segment(protocol: &ProtocolParams, effort: f64, s: f64, short: bool) -> u64 {
+fn segment(protocol: &ProtocolParams, effort: f64, s: f64, short: bool) -> u64 {
     let share = match (s == 1.0, short) {
         (true, _) => return trial_steps(protocol, effort),
         (false, true) => SEGMENT * SHORT,
@@ -101,13 +101,78 @@ pub(super) fn segment(protocol: &ProtocolParams, effort: f64, s: f64, short: boo
     ((trial as f64 * share).ceil() as u64).max(1)
 }
 
+/// The descent's course through the loop of `pack`: whether it runs, and what its next
+/// segment needs to know.
+#[derive(Debug, Default)]
+pub(super) struct Descent {
+    /// From the first deep jam to the first clean state (or the bisection).
+    on: bool,
+    /// The next segment is the first, at the jam's own scale.
+    from_jam: bool,
+    /// The scale the descent came from to try the target ([`TARGET_BELOW`]), to go
+    /// back to if the target does not come out clean.
+    above: Option<f64>,
+    /// The next segment is short ([`SHORT`]).
+    short: bool,
+}
+
+impl Descent {
+    /// Whether the descent runs.
+    pub fn on(&self) -> bool {
+        self.on
+    }
+
+    /// Starts it from a deep jam.
+    pub fn start(&mut self) {
+        (self.on, self.from_jam) = (true, true);
+    }
+
+    /// Ends it (a clean state, or the bisection or a recompression cycle takes over).
+    pub fn stop(&mut self) {
+        self.on = false;
+    }
+
+    /// The FIRE steps of its segment at scale `s` ([`segment`]).
+    pub fn budget(&self, protocol: &ProtocolParams, effort: f64, s: f64) -> u64 {
+        segment(protocol, effort, s, self.short)
+    }
+
+    /// The scale of the segment after one at `s` that did not come out clean: its first
+    /// goes on at the jam's own scale; a target tried and not clean gives way to the
+    /// scale the descent came from; else [`next`], which may try the target unless
+    /// `target_tried` (set when it does). `None`, and the descent ends, where the
+    /// bisection takes over.
+    pub fn next_scale(
+        &mut self,
+        s: f64,
+        relaxed: (&Forces, f64),
+        bounds: (f64, f64, f64),
+        target_tried: &mut bool,
+    ) -> Option<f64> {
+        let next = match (std::mem::take(&mut self.from_jam), s == 1.0) {
+            (true, _) => Some((s, true)),
+            (false, true) if self.above.is_some() => self.above.take().map(|s| (s, false)),
+            _ => next(s, relaxed, bounds, !*target_tried),
+        };
+        let Some((next, short)) = next else {
+            self.on = false;
+            return None;
+        };
+        self.short = short;
+        if next == 1.0 && s > 1.0 {
+            (self.above, *target_tried) = (Some(s), true);
+        }
+        Some(next)
+    }
+}
+
 /// The next segment's scale after one at `s` that did not come out clean, from the
 /// forces evaluated there at `s (1 + margin)` and the grains' mean squared inscribed
 /// radius `rho2` (`Fire::mean_rho2`); `None` when that would not lie above
 /// the densest clean scale `low` by more than the resolution (the bisection takes
 /// over). From above the target, the target itself when the step would end near or
 /// above it ([`TARGET_BELOW`]) and `target` (not yet tried).
-pub(super) fn next(
+fn next(
     s: f64,
     (forces, rho2): (&Forces, f64),
     (margin, resolution, low): (f64, f64, f64),

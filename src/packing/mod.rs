@@ -86,6 +86,7 @@ pub use tuning::{FireParams, NeighbourParams, ProtocolParams, Tuning, TuningErro
 pub use verify::{verify, MIN_GAP_REACH};
 
 use crate::scene::Rotation;
+use descent::Descent;
 use effort::{
     deep_patience, first_relaxation, recompression, recompression_cycles, start_cycle, timed_steps,
     trial_steps, tries_target, CYCLE_WINDOW, DEEP_START, GIVE_WAY, GIVE_WAY_TARGET, QUENCH_LIMIT,
@@ -180,7 +181,7 @@ pub fn pack(
     // search only if it jams on a plateau.
     let (mut target_tried, mut guess) = (false, false);
     // From the first deep jam to the first clean state: the descent (module `descent`).
-    let (mut descending, mut from_jam, mut above, mut short) = (false, false, None, false);
+    let mut descent = Descent::default();
     // Under a time limit, when the relaxations before the first clean state give way:
     // those above the target, then the target's own.
     let (mut give_way_above, give_way_target) = (after(GIVE_WAY), after(GIVE_WAY_TARGET));
@@ -203,8 +204,8 @@ pub fn pack(
             let timed = (run.time_left()).map_or(u64::MAX, |left| {
                 timed_steps(run.started.elapsed(), left, run.counters.fire_steps)
             });
-            match descending {
-                true => descent::segment(&protocol, params.effort, s, short),
+            match descent.on() {
+                true => descent.budget(&protocol, params.effort, s),
                 false => trial_steps(&protocol, params.effort),
             }
             .min(timed)
@@ -226,7 +227,7 @@ pub fn pack(
             (true, true) => give_way_above,
             (true, false) => give_way_target,
         };
-        if descending {
+        if descent.on() {
             (fire.keep_step, fire.keep_velocity) = (true, true);
         }
         let before = run.counters.fire_steps;
@@ -263,7 +264,7 @@ pub fn pack(
             }
             Outcome::Clean => {
                 best = Some(Snapshot::of(&state, s.min(1.0)));
-                descending = false;
+                descent.stop();
             }
             Outcome::Stuck | Outcome::Budget => {
                 keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
@@ -279,7 +280,7 @@ pub fn pack(
                 }
                 // A state given way to a time limit is no jam to descend from.
                 if quenching && !gave_way && protocol.descent {
-                    (descending, from_jam) = (true, true);
+                    descent.start();
                 }
             }
         }
@@ -293,7 +294,8 @@ pub fn pack(
                 break StopReason::Jammed;
             }
             cycles_left -= 1;
-            (stuck, descending) = (f64::INFINITY, false);
+            stuck = f64::INFINITY;
+            descent.stop();
             // The cycles' relaxations judge with the half window.
             let half_window = (tuning.fire.window as f64 * CYCLE_WINDOW).round() as u64;
             if unjammer.anneals() {
@@ -326,24 +328,13 @@ pub fn pack(
             fire.set_window(half_window);
             continue;
         }
-        if descending {
-            // Its first segment goes on at the jam's own scale; a target tried and not
-            // clean gives way to the scale the descent came from (module `descent`).
+        if descent.on() {
             let bounds = (protocol.margin, params.jam_resolution, low);
-            let next = match (std::mem::take(&mut from_jam), s == 1.0) {
-                (true, _) => Some((s, true)),
-                (false, true) if above.is_some() => above.take().map(|s| (s, false)),
-                _ => descent::next(s, (&run.forces, fire.mean_rho2), bounds, !target_tried),
-            };
-            if let Some((next, next_short)) = next {
-                short = next_short;
-                if next == 1.0 && s > 1.0 {
-                    (above, target_tried) = (Some(s), true);
-                }
+            let relaxed = (&run.forces, state.mean_rho2);
+            if let Some(next) = descent.next_scale(s, relaxed, bounds, &mut target_tried) {
                 s = next;
                 continue;
             }
-            descending = false;
         }
         guess = !target_tried && tries_target(low, stuck);
         target_tried |= guess;

@@ -42,6 +42,10 @@ pub(crate) struct State {
     /// Their mean (a grain's bounding radius, its largest semi-axis, does not change
     /// as it turns).
     pub mean_bounding_radius: f64,
+    /// The grains' mean squared inscribed radius: the unit of the loop's energies (a
+    /// pair overlapping by `δ` of the scale has energy about `4 ρ² δ²`), which the
+    /// jamming test and the descent read overlaps from.
+    pub mean_rho2: f64,
     /// The relative margin kept from the walls ([`WALL_MARGIN`], plus
     /// [`INFLATION_ROUNDING`] with a gap).
     pub wall_margin: f64,
@@ -79,6 +83,7 @@ impl State {
             half_widths: Vec::with_capacity(n),
             max_bounding_radius: 0.0,
             mean_bounding_radius: 0.0,
+            mean_rho2: 0.0,
             wall_margin: if gap > 0.0 {
                 WALL_MARGIN + INFLATION_ROUNDING
             } else {
@@ -97,6 +102,8 @@ impl State {
         state.total_volume = state.volumes.iter().sum();
         let radii = state.shapes.iter().map(|e| e.bounding_radius());
         state.mean_bounding_radius = radii.sum::<f64>() / n as f64;
+        let rho2 = state.shapes.iter().map(|e| e.inscribed_radius().powi(2));
+        state.mean_rho2 = rho2.sum::<f64>() / n as f64;
         Ok(state)
     }
 

@@ -121,10 +121,6 @@ pub(crate) struct Fire {
     /// last one ended with, as one relaxation whose scale moved; cleared by it. For
     /// the descent's segments (module `descent`).
     pub keep_velocity: bool,
-    /// The grains' mean squared inscribed radius, as the last relaxation found it: the
-    /// unit of its energies (a pair overlapping by `δ` of the scale has energy about
-    /// `4 ρ² δ²`), which the descent reads its overlap from (module `descent`).
-    pub mean_rho2: f64,
     /// The square root of each grain's mass (see [`masses`]).
     root_mass: Vec<f64>,
     /// Each grain's force over its root mass.
@@ -151,7 +147,6 @@ impl Fire {
             deep: false,
             keep_step: false,
             keep_velocity: false,
-            mean_rho2: 0.0,
             patience: Patience::NONE,
             root_mass: Vec::new(),
             scaled: Vec::new(),
@@ -197,13 +192,7 @@ impl Fire {
         }
         // A contact overlapping by the margin has energy (2ρ (S − s))², ρ the smallest
         // semi-axis: the jamming test's unit.
-        self.mean_rho2 = state
-            .shapes
-            .iter()
-            .map(|e| e.inscribed_radius().powi(2))
-            .sum::<f64>()
-            / n as f64;
-        let margin_energy = 4.0 * (big_s - s).powi(2) * self.mean_rho2;
+        let margin_energy = 4.0 * (big_s - s).powi(2) * state.mean_rho2;
         let mut jam = JamTest::new(
             p.window,
             p.plateau_slope,
