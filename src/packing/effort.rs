@@ -84,10 +84,17 @@ pub(super) fn trial_steps(protocol: &ProtocolParams, effort: f64) -> u64 {
 }
 
 /// The patience of a deep relaxation before the search (module `jamming`): below
-/// `effort = 1`, [`DEEP_PATIENCE`] trials' budgets ([`trial_steps`]); from 1 on none,
-/// and a deep relaxation runs to its plateau.
+/// `effort = 1`, [`DEEP_PATIENCE`] trials' budgets ([`trial_steps`]); below
+/// [`QUENCH_MIN_EFFORT`], where a target far above the jamming point is relaxed at
+/// itself and not deeper ([`first_relaxation`]), none: jammed at the test's first
+/// judgement (400 FIRE steps, as at `effort = 0.1`). With four budgets of 0.25 there,
+/// 10 000 equal spheres asked 0.70 took 2.7 s where 0.5 took 1.6–1.9 s, to the same
+/// 0.640 (now 1.7 s to 0.638–0.639: BENCHMARKS.md, "Effort below 0.5 no slower than
+/// 0.5"). From 1 on none, and a deep relaxation runs to its plateau.
 pub(super) fn deep_patience(protocol: &ProtocolParams, effort: f64) -> u64 {
-    if effort < 1.0 {
+    if effort < QUENCH_MIN_EFFORT {
+        0
+    } else if effort < 1.0 {
         DEEP_PATIENCE * trial_steps(protocol, effort)
     } else {
         u64::MAX

@@ -78,6 +78,25 @@ fn a_target_near_the_jamming_point_is_first_relaxed_deep() {
     assert_eq!(below.stop, StopReason::TargetReached);
 }
 
+/// Below `effort = 0.5` a target far above the jamming point (500 equal spheres asked
+/// 0.70) is first relaxed at the target itself, and counts as jammed at the jamming
+/// test's first judgement (`effort::deep_patience`): 400 FIRE steps, where four trial
+/// budgets of `effort = 0.25` let it run to its plateau at 600 (10 000 such spheres:
+/// 1 000 steps, and the run took longer than at `effort = 0.5`, which starts deeper).
+#[test]
+fn below_effort_one_half_a_deep_target_is_jammed_at_the_first_judgement() {
+    let text = "seed = 1\ngrains = 500\n[box]\nsize = [14.41, 14.41, 14.41]\n\
+                boundary = \"periodic\"\n\
+                [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n";
+    let (p, _) = pack_with(text, |p| p.effort = 0.25);
+    let first = &p.trials[0];
+    assert_eq!((first.scale, first.outcome), (1.0, Outcome::Stuck));
+    let judged = FireParams::default().window * jamming::MIN_WINDOWS as u64;
+    assert_eq!(first.fire_steps, judged, "{:?}", &p.trials[..2]);
+    assert_eq!(p.stop, StopReason::Jammed);
+    assert!(p.verification.is_clean(), "{:?}", p.verification);
+}
+
 /// Grains that do not turn jam below spheres of their sizes when their orientations
 /// are spread (frozen spheroids of aspect 1.5: 0.630 against 0.6435), so a target of
 /// 0.62 (0.963 of the sphere estimate) is near their jamming point and starts deep;
