@@ -6,7 +6,7 @@ use anyhow::{anyhow, Context};
 use grainpack::contact::Dimension;
 use grainpack::io::mesh::{gmsh_version, python};
 use grainpack::io::report::{create_dir, write_outputs};
-use grainpack::packing::{Outcome, Packing, Progress, StopReason};
+use grainpack::packing::{Outcome, Packing, Progress, StopReason, Trial};
 use grainpack::run::{Drawn, RunError, RunOptions};
 use grainpack::scene::{OutputSpec, Scene, Unjam};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -237,27 +237,29 @@ fn why(packing: &Packing, scene: &Scene) -> String {
             "step limit: {} steps made (packing.max_steps)",
             scene.packing.max_steps
         ),
-        StopReason::Interrupted => format!("interrupted (Ctrl-C){}", unfinished(packing)),
+        StopReason::Interrupted => format!("interrupted (Ctrl-C){}", unfinished(&packing.trials)),
         StopReason::TimeLimit => format!(
             "time limit: {} s of packing (packing.time_limit or --time-limit) ran out{}",
             scene.packing.time_limit.unwrap_or(f64::NAN),
-            unfinished(packing)
+            unfinished(&packing.trials)
         ),
     }
 }
 
-/// What a stop before any relaxation came out clean means: the state kept is the last
-/// one shrunk until no grains overlap, sized by its deepest overlap (10 000 grains
-/// given 0.3–1 s kept 0.57–0.60 of 0.60 that way, nearly apart; before the target's
-/// relaxation gave way, 0.0000–0.59: BENCHMARKS.md, "Time limits shorter than the
-/// first relaxation, again").
-fn unfinished(packing: &Packing) -> &'static str {
-    if packing.trials.iter().any(|t| t.outcome == Outcome::Clean) {
+/// What a stop before any relaxation came out clean or jammed means: the state kept is
+/// the last one shrunk until no grains overlap, sized by its deepest overlap (10 000
+/// grains given 0.3–1 s kept 0.57–0.60 of 0.60 that way, nearly apart; before the
+/// target's relaxation gave way, 0.0000–0.59: BENCHMARKS.md, "Time limits shorter than
+/// the first relaxation, again"). After a jam the states kept are relaxed ones near the
+/// jamming point (the descent's, shrunk until apart), which need no such note.
+fn unfinished(trials: &[Trial]) -> &'static str {
+    let settled = |t: &Trial| matches!(t.outcome, Outcome::Clean | Outcome::Stuck);
+    if trials.iter().any(settled) {
         return "";
     }
-    " before any relaxation came out clean, so the state kept is the last one shrunk \
-     until its deepest overlap is gone; a lower target_fraction, or more time, keeps a \
-     denser one"
+    " before any relaxation came out clean or jammed, so the state kept is the last one \
+     shrunk until its deepest overlap is gone; a lower target_fraction, or more time, \
+     keeps a denser one"
 }
 
 /// "wrote a, b" or "wrote nothing".
@@ -310,5 +312,33 @@ impl Bar {
 
     fn finish(&self) {
         self.bar.finish_and_clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn trials(outcomes: &[Outcome]) -> Vec<Trial> {
+        let trial = |&outcome| Trial {
+            scale: 1.0,
+            fraction: 0.6,
+            outcome,
+            fire_steps: 100,
+            energy_per_grain: 1e-3,
+        };
+        outcomes.iter().map(trial).collect()
+    }
+
+    /// A stop before any relaxation settled says what the state kept is; one after a jam
+    /// (the descent's segments run out of their steps, then the limit) or a clean
+    /// relaxation does not.
+    #[test]
+    fn only_a_stop_before_any_relaxation_settled_is_noted() {
+        use Outcome::{Budget, Clean, Interrupted, Stuck};
+        assert!(!unfinished(&trials(&[Interrupted])).is_empty());
+        assert!(!unfinished(&trials(&[Budget, Budget, Interrupted])).is_empty());
+        assert!(unfinished(&trials(&[Stuck, Budget, Budget, Interrupted])).is_empty());
+        assert!(unfinished(&trials(&[Budget, Clean, Interrupted])).is_empty());
     }
 }
