@@ -7,7 +7,6 @@ use super::FireParams;
 use super::ProtocolParams;
 use crate::contact::Dimension;
 use crate::scene::{affine_slenderness, sphere_close_packing, GrainSpec};
-use std::time::Duration;
 
 /// How far past the scale of a jammed state a recompression cycle compresses it,
 /// relatively: 0.1 of scale is a third more packing fraction (0.64 to 0.85 for
@@ -43,6 +42,37 @@ pub(super) fn recompression(specs: &[GrainSpec]) -> f64 {
         RECOMPRESSION
     }
 }
+
+/// Whether the first jam is spread before the search: grains that do not turn and are
+/// slender ([`recompression`] deep), from `effort` [`QUENCH_MIN_EFFORT`] on. Jammed
+/// from random positions they lock into a loose arrangement the search cannot undo;
+/// compressed by [`DEEP_RECOMPRESSION`] (as a cycle's start) and relaxed there, they
+/// spread afresh, and the search bisects from that jam (no descent: 2.5 % steps from
+/// twice the scale took twice as long for the same density). At `effort = 1`, one or
+/// two threads, seeds 1–3: 300 frozen ellipses of aspect 5 asked 0.86 reach 0.748–0.758
+/// instead of 0.661–0.674 in 3–4 times the time (0.4–0.6 s); 573 frozen needles and
+/// platelets of aspect 12 (`needles_platelets_frozen.toml`) 0.278–0.287 instead of
+/// 0.236–0.243 (3–4 times, about 5 s), 4 584 of them 0.285 instead of 0.238 (60 s
+/// against 22 s), where `effort = 1.5` reaches 0.30 in 13 s; 1 146 frozen spheroids of
+/// aspect 6 asked 0.60 0.503–0.504 instead of 0.443–0.446 (5 times, 11 s; BENCHMARKS.md,
+/// "Frozen slender grains spread before the search").
+pub(super) fn spreads_first(specs: &[GrainSpec], turning: bool, effort: f64) -> bool {
+    !turning && effort >= QUENCH_MIN_EFFORT && recompression(specs) == DEEP_RECOMPRESSION
+}
+
+/// Whether the spread of [`spreads_first`] keeps the candidate list within
+/// [`SPREAD_MAX_PAIRS`]: at twice the scale the bounding spheres meet about `2^d` times
+/// as many others (`d` the dimension) as at the jam, which lists `pairs`.
+pub(super) fn spread_fits(pairs: usize, dimension: Dimension) -> bool {
+    (pairs as f64) * 2f64.powi(dimension.exponent()) <= SPREAD_MAX_PAIRS
+}
+
+/// The most candidate pairs a spread may list: 5·10⁷, about 1 GB (20 bytes a pair: the
+/// pair, its allowance and its λ). Slender grains' bounding spheres hold many others:
+/// 4 584 needles of aspect 12 took 131 MB at the spread against 28 MB without, so
+/// about 40 000 of them spread, and larger scenes search from their first jam as
+/// before.
+pub(super) const SPREAD_MAX_PAIRS: f64 = 5e7;
 
 /// The grains' mean slenderness: longest over shortest semi-axis, 1 for spheres.
 fn mean_slenderness(specs: &[GrainSpec]) -> f64 {
@@ -341,61 +371,4 @@ pub(super) fn first_relaxation(
 /// fifth round"), and the bisection goes on from its midpoint.
 pub(super) fn tries_target(low: f64, stuck: f64) -> bool {
     low < 1.0 && 1.0 < 0.5 * (low + stuck)
-}
-
-/// Under a time limit, the share of it after which the relaxations above the target
-/// before the search (a deep start, an overshoot, a compression of a shallow first
-/// jam) give way: the overshoot to the target's relaxation, the others to the search.
-/// Until the search's first clean trial, the densest clean state is the current one
-/// shrunk until apart, and a relaxation far above the jamming point overlaps by a
-/// tenth of the scale for hundreds of steps: a limit that ran out inside the deep start
-/// kept 0.41–0.48 on 10 000 grains that reach 0.62–0.70. Given way, the search's first
-/// trial (below the jamming point, clean in 60–80 FIRE steps) and the target's follow.
-/// 0.35 (with [`GIVE_WAY_TARGET`]) rather than the 0.7 chosen before the search's
-/// trials were planned to the time left (`timed_steps`): the family of starts given a
-/// quarter of its `effort = 1` time ends 0.020–0.024 below it on the mean instead of
-/// 0.040–0.045, given half as before; single scenes given 0.3–0.6 s move by up to 0.04
-/// either way (BENCHMARKS.md, "Time limits shorter than the first relaxation, again").
-pub(super) const GIVE_WAY: f64 = 0.35;
-
-/// Under a time limit, the share of it after which the target's own relaxation gives
-/// way to the search while no state has come out clean and its grains still overlap
-/// deeply ([`NEARLY_APART`](super::fire::NEARLY_APART)): the state is shrunk until
-/// apart and the search climbs from there in the time left, in trials that clear in
-/// tens of steps. 10⁶ grains asked 0.60 and given 30 s kept 0.45–0.47 (the relaxation
-/// interrupted, shrunk by its deepest overlap) and now 0.50–0.52; 10⁵ given 3 s 0.49–0.50
-/// and now 0.53–0.54. The price: a limit the relaxation would just have fitted keeps
-/// the search's 0.99 of the target (10⁵ given 5 s: 0.593–0.599 for 0.600;
-/// BENCHMARKS.md, as for [`GIVE_WAY`]).
-pub(super) const GIVE_WAY_TARGET: f64 = 0.7;
-
-/// Under a time limit, the share of the FIRE steps left (the time left at the mean cost
-/// of a step so far) that one trial of the search may take ([`timed_steps`]), so that a
-/// limit shorter than the search still leaves time for its later, finer trials instead
-/// of ending inside a trial that runs its whole budget (without a share, 10 000 equal
-/// spheres asked 0.70 and given 1.6 or 2 s, two threads, seed 1, ended in the trial at
-/// 0.6444 and kept the clean state at 0.598). Shares 0.25, 0.33, 0.5 and 0.7 on those
-/// spheres given 1–2 s: 0.5 and 0.7 the densest, within 0.0005 of each other
-/// (BENCHMARKS.md, "Issue 26: a time limit that plans its trials").
-pub(super) const TIMED_SHARE: f64 = 0.5;
-
-/// The fewest FIRE steps a trial of the search is given under a time limit
-/// ([`timed_steps`]), whatever the time left: a trial just below the jamming point comes
-/// out clean in 20–80 steps from the state before it, and one cut before then counts
-/// as stuck and bounds the search below it (equal spheres asked 0.70, seed 2: a trial
-/// at 0.954 cut at 68 steps, the search then held below it). The family of starts
-/// given half the time effort 1 takes: 0.0069 below effort 1's densities on the mean
-/// with 100, 0.0097 with none, 0.0156 with 200, before the final check's reserve
-/// (`fire::FINISH_STEPS`; 0.0078 with it and 100; BENCHMARKS.md, same section).
-pub(super) const TIMED_LEAST: u64 = 100;
-
-/// Under a time limit, the most FIRE steps a trial of the search may take: [`TIMED_SHARE`]
-/// of those that the time `left` allows at the mean cost of the `steps` taken in
-/// `spent`, at least [`TIMED_LEAST`]. No cap before the first step.
-pub(super) fn timed_steps(spent: Duration, left: Duration, steps: u64) -> u64 {
-    if steps == 0 || spent.is_zero() {
-        return u64::MAX;
-    }
-    let allowed = left.as_secs_f64() / spent.as_secs_f64() * steps as f64;
-    ((TIMED_SHARE * allowed).ceil() as u64).max(TIMED_LEAST)
 }

@@ -53,7 +53,7 @@ pub enum Outcome {
     /// (the jamming test of `packing/jamming.rs`).
     Stuck,
     /// The step budget ran out, or under a time limit a relaxation before the first
-    /// clean state gave way (`packing::effort::GIVE_WAY`, `GIVE_WAY_TARGET`).
+    /// clean state gave way (`packing::time_limit::GIVE_WAY`, `GIVE_WAY_TARGET`).
     Budget,
     /// The caller asked to stop, or the time limit ran out.
     Interrupted,

@@ -22,7 +22,8 @@
 //!    relaxation from random positions there creeps; above it, in 3D, the first relaxation
 //!    is at that band's deepest fraction, where it jams sooner; grains that do not turn jam lower
 //!    than spheres of their sizes unless aligned, `frozen_share`; frozen grains a little below
-//!    theirs are first pushed past it for a while, `OVERSHOOT`); after a stuck relaxation the state shrunk by
+//!    theirs are first pushed past it for a while, `OVERSHOOT`; the first jam of frozen slender
+//!    grains is spread at twice its scale, `spreads_first`); after a stuck relaxation the state shrunk by
 //!    its smallest μ is a clean state at once, and the scale is bisected between the best
 //!    clean scale and the smallest stuck one until they are within `jam_resolution`
 //!    (relative; a scene parameter), the target itself tried once as soon as it lies
@@ -35,7 +36,7 @@
 //!    below 1), and one that runs out of it counts as jammed at that scale (below `effort = 1`, so
 //!    does the target's own relaxation far above the jamming point, *deep*, after four such
 //!    budgets; under a time limit, a trial has at most half the steps the time left
-//!    allows, `effort.rs`, `timed_steps`). A first jam that is *shallow* (the target just
+//!    allows, `time_limit.rs`, `timed_steps`). A first jam that is *shallow* (the target just
 //!    above the jamming point: the relaxation from random positions creeps, and is cut after
 //!    [`trial_steps`](ProtocolParams::trial_steps), times `effort` below 1, by the jamming test's
 //!    patience) sets no bound (from `effort` 0.5 on; below, the search starts from it): the state
@@ -75,6 +76,7 @@ mod neighbours;
 mod snapshot;
 mod start;
 mod state;
+mod time_limit;
 mod tuning;
 mod unjam;
 mod verify;
@@ -88,8 +90,8 @@ pub use verify::{verify, MIN_GAP_REACH};
 use crate::scene::Rotation;
 use descent::Descent;
 use effort::{
-    deep_patience, first_relaxation, recompression, recompression_cycles, start_cycle, timed_steps,
-    trial_steps, tries_target, CYCLE_WINDOW, DEEP_START, GIVE_WAY, GIVE_WAY_TARGET, QUENCH_LIMIT,
+    deep_patience, first_relaxation, recompression, recompression_cycles, spread_fits,
+    spreads_first, start_cycle, trial_steps, tries_target, CYCLE_WINDOW, DEEP_START, QUENCH_LIMIT,
     QUENCH_MIN_EFFORT, QUENCH_STEP,
 };
 use fire::{Context, Fire};
@@ -98,6 +100,7 @@ use neighbours::Neighbours;
 pub(crate) use snapshot::clean_scale;
 use snapshot::{finish, keep_denser, restore, turn_back, Snapshot};
 use state::State;
+use time_limit::{timed_steps, GIVE_WAY, GIVE_WAY_TARGET};
 
 use crate::scene::GrainSpec;
 use std::sync::atomic::AtomicBool;
@@ -173,6 +176,9 @@ pub fn pack(
         None => recompression_cycles(params.effort),
     };
     let depth = recompression(specs);
+    // Frozen slender grains: their first jam is spread before the search (`effort`,
+    // `spreads_first`), which then bisects.
+    let (mut spread, mut spread_done) = (spreads_first(specs, turning, params.effort), false);
     let mut unjammer =
         unjam::Unjammer::new(params.unjam, recompression_cycles(params.effort), seed);
     // Until the first jam deep enough to search from (`effort::QUENCH_STEP`).
@@ -268,6 +274,11 @@ pub fn pack(
             }
             Outcome::Stuck | Outcome::Budget => {
                 keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
+                let fits = || spread_fits(run.neighbours.pairs.len(), domain.dimension);
+                if quenching && !gave_way && std::mem::take(&mut spread) && fits() {
+                    (s, spread_done) = (start_cycle(s, depth), true);
+                    continue;
+                }
                 // A shallow first jam is a poor start for the search: compress further,
                 // at once to where a jam is deep, unless given way to the search.
                 let shallow = quenching && !gave_way && !fire.deep;
@@ -279,7 +290,7 @@ pub fn pack(
                     stuck = stuck.min(s);
                 }
                 // A state given way to a time limit is no jam to descend from.
-                if quenching && !gave_way && protocol.descent {
+                if quenching && !gave_way && protocol.descent && !spread_done {
                     descent.start();
                 }
             }

@@ -97,6 +97,35 @@ fn below_effort_one_half_a_deep_target_is_jammed_at_the_first_judgement() {
     assert!(p.verification.is_clean(), "{:?}", p.verification);
 }
 
+/// The first jam of frozen slender grains is spread at twice its scale before the
+/// search, which then bisects (no descent): 300 frozen ellipses of aspect 5 asked 0.86
+/// end denser by far than at `effort = 0.4`, which does not spread (seed 1: 0.756
+/// against 0.652). A spread whose list would pass `SPREAD_MAX_PAIRS` is left out.
+#[test]
+fn the_first_jam_of_frozen_slender_grains_is_spread_before_the_search() {
+    let text = "seed = 1\ngrains = 300\n[box]\nsize = [33.1044, 33.1044]\n\
+                [[phase]]\nsize = { distribution = \"constant\", value = 2.0 }\n\
+                aspect_ratio = { distribution = \"constant\", value = 0.2 }\n";
+    let (spread, _) = pack_scene(text, Rotation::None);
+    let [jam, wide] = [&spread.trials[0], &spread.trials[1]];
+    assert_eq!(wide.scale, 2.0 * jam.scale, "{:?}", &spread.trials[..3]);
+    assert!(matches!(jam.outcome, Outcome::Stuck | Outcome::Budget));
+    assert!(spread.verification.is_clean(), "{:?}", spread.verification);
+    let (plain, _) = pack_with(text, |p| p.effort = 0.4);
+    assert_ne!(plain.trials[1].scale, 2.0 * plain.trials[0].scale);
+    assert!(
+        spread.fraction > plain.fraction + 0.03,
+        "{} {}",
+        spread.fraction,
+        plain.fraction
+    );
+    let most = effort::SPREAD_MAX_PAIRS as usize;
+    assert!(spread_fits(most / 4, Dimension::Two) && !spread_fits(most / 4 + 1, Dimension::Two));
+    assert!(
+        spread_fits(most / 8, Dimension::Three) && !spread_fits(most / 8 + 1, Dimension::Three)
+    );
+}
+
 /// Grains that do not turn jam below spheres of their sizes when their orientations
 /// are spread (frozen spheroids of aspect 1.5: 0.630 against 0.6435), so a target of
 /// 0.62 (0.963 of the sphere estimate) is near their jamming point and starts deep;

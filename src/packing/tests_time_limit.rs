@@ -48,7 +48,7 @@ fn clean_after_first(p: &Packing) -> bool {
 }
 
 /// Under a time limit shorter than the target's own relaxation from random positions,
-/// that relaxation gives way to the search at [`effort::GIVE_WAY_TARGET`] of the limit
+/// that relaxation gives way to the search at [`time_limit::GIVE_WAY_TARGET`] of the limit
 /// while its grains still overlap deeply, and the search's trials climb from it shrunk
 /// until apart: the run keeps a clean trial's state, not the interrupted relaxation's
 /// shrunk by its deepest overlap. 3 000 equal spheres asked 0.60 (well below their
@@ -154,17 +154,20 @@ fn a_time_limit_shorter_than_the_deep_start_gives_way_to_the_search() {
 
 /// Under a time limit a trial of the search takes at most half the FIRE steps the time
 /// left allows at the mean cost of a step so far, and never fewer than
-/// [`effort::TIMED_LEAST`]; before the first step, no cap.
+/// [`time_limit::TIMED_LEAST`]; before the first step, no cap.
 #[test]
 fn a_timed_trial_takes_its_share_of_the_steps_left() {
     use std::time::Duration;
     let secs = Duration::from_secs_f64;
     assert_eq!(timed_steps(secs(1.0), secs(4.0), 500), 1000);
     assert_eq!(timed_steps(secs(2.0), secs(1.0), 2000), 500);
-    assert_eq!(timed_steps(secs(1.0), secs(0.01), 500), effort::TIMED_LEAST);
+    assert_eq!(
+        timed_steps(secs(1.0), secs(0.01), 500),
+        time_limit::TIMED_LEAST
+    );
     assert_eq!(
         timed_steps(secs(1.0), Duration::ZERO, 500),
-        effort::TIMED_LEAST
+        time_limit::TIMED_LEAST
     );
     assert_eq!(timed_steps(Duration::ZERO, secs(1.0), 0), u64::MAX);
 }

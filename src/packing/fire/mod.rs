@@ -37,7 +37,7 @@ pub(crate) struct Context<'a> {
     pub started: Instant,
     /// When a relaxation gives way as if out of steps ([`Outcome::Budget`]): the
     /// loop sets it, under a time limit, for the relaxations before the first clean
-    /// state (`effort::GIVE_WAY`, `GIVE_WAY_TARGET`).
+    /// state (`time_limit::GIVE_WAY`, `GIVE_WAY_TARGET`).
     pub give_way: Option<Instant>,
     pub progress: &'a mut dyn FnMut(&Progress),
 }
@@ -51,7 +51,7 @@ pub(crate) const FINISH_STEPS: f64 = 6.0;
 
 /// A relaxation whose deepest pair would touch at more than this share of its scale
 /// (`μ₁ / s`: it overlaps by less than 5 %) does not give way under a time limit
-/// (`effort::GIVE_WAY`, `GIVE_WAY_TARGET`): it comes out clean within a few more steps,
+/// (`time_limit::GIVE_WAY`, `GIVE_WAY_TARGET`): it comes out clean within a few more steps,
 /// or is kept shrunk to at least `0.95³ = 0.86` of its fraction. 10⁵ frozen ellipsoids
 /// asked 0.60 and given 5 s were at 0.965 when their target's relaxation gave way, and
 /// kept 0.585 from the search; going on, 0.595 (given 3 s they are at 0.85, and give
