@@ -44,15 +44,16 @@ pub(super) fn recompression(specs: &[GrainSpec]) -> f64 {
 }
 
 /// Whether the first jam is spread before the search: grains that do not turn and are
-/// slender ([`recompression`] deep), from `effort` [`QUENCH_MIN_EFFORT`] on. Jammed
-/// from random positions they lock into a loose arrangement the search cannot undo;
-/// compressed by [`DEEP_RECOMPRESSION`] (as a cycle's start) and relaxed there, they
-/// spread afresh, and the search bisects from that jam (no descent: 2.5 % steps from
-/// twice the scale took twice as long for the same density). At `effort = 1`, one or
-/// two threads, seeds 1–3: 300 frozen ellipses of aspect 5 asked 0.86 reach 0.748–0.758
-/// instead of 0.661–0.674 in 3–4 times the time (0.4–0.6 s); 573 frozen needles and
-/// platelets of aspect 12 (`needles_platelets_frozen.toml`) 0.278–0.287 instead of
-/// 0.236–0.243 (3–4 times, about 5 s), 4 584 of them 0.285 instead of 0.238 (60 s
+/// slender ([`recompression`] deep), from `effort` [`QUENCH_MIN_EFFORT`] on. Jammed from
+/// random positions they lock into a loose arrangement the search cannot undo; compressed
+/// by [`DEEP_RECOMPRESSION`] (as a cycle's start) and relaxed there, they spread afresh,
+/// and the search bisects from that jam (no descent: 2.5 % steps from twice the scale took
+/// twice as long for the same density; under a time limit, only before the relaxations
+/// above the target give way, `time_limit::GIVE_WAY`, as the spread is one of them). At
+/// `effort = 1`, one or two threads, seeds 1–3: 300 frozen ellipses of aspect 5 asked 0.86
+/// reach 0.748–0.758 instead of 0.661–0.674 in 3–4 times the time (0.4–0.6 s); 573 frozen
+/// needles and platelets of aspect 12 (`needles_platelets_frozen.toml`) 0.278–0.287 instead
+/// of 0.236–0.243 (3–4 times, about 5 s), 4 584 of them 0.285 instead of 0.238 (60 s
 /// against 22 s), where `effort = 1.5` reaches 0.30 in 13 s; 1 146 frozen spheroids of
 /// aspect 6 asked 0.60 0.503–0.504 instead of 0.443–0.446 (5 times, 11 s; BENCHMARKS.md,
 /// "Frozen slender grains spread before the search").

@@ -274,8 +274,11 @@ pub fn pack(
             }
             Outcome::Stuck | Outcome::Budget => {
                 keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
+                // Under a time limit, only while relaxations above the target may run.
+                let room = params.time_limit.is_none()
+                    || give_way_above.is_some_and(|d| Instant::now() < d);
                 let fits = || spread_fits(run.neighbours.pairs.len(), domain.dimension);
-                if quenching && !gave_way && std::mem::take(&mut spread) && fits() {
+                if quenching && !gave_way && std::mem::take(&mut spread) && room && fits() {
                     (s, spread_done) = (start_cycle(s, depth), true);
                     continue;
                 }
