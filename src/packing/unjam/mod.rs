@@ -212,8 +212,27 @@ pub(crate) fn swap_round(
 /// began just before the limit ran its swap rounds past it (10⁴ lognormal spheres given
 /// 3.94 s packed for 4.22 s), and a sweep of 10⁶ grains takes seconds. The clock is
 /// read once per this many attempts, each of which evaluates contact functions with
-/// their neighbours.
+/// their neighbours, or sooner ([`HALT_WORK`]).
 pub(crate) const HALT_EVERY: usize = 1024;
+
+/// A sweep also asks whether to stop once its attempts since the last ask have looked
+/// at this many neighbours (each a bounding-sphere test and, for most, a contact
+/// function: a few ms in all). Slender grains at a deep cycle's scale have thousands of
+/// neighbours each: 573 needles of aspect 12 given 2 s, whose cycle began just before
+/// the limit, ran a sweep of 0.3 s past it (BENCHMARKS.md, "Frozen slender grains
+/// spread before the search").
+pub(crate) const HALT_WORK: usize = 1 << 16;
+
+/// Whether a sweep must stop before grain `i`, the attempts since the last ask having
+/// looked at `work` neighbours: asks `halt` every [`HALT_EVERY`] grains and once `work`
+/// reaches [`HALT_WORK`] (then counted afresh).
+pub(crate) fn halts(i: usize, work: &mut usize, halt: &dyn Fn() -> bool) -> bool {
+    if !i.is_multiple_of(HALT_EVERY) && *work < HALT_WORK {
+        return false;
+    }
+    *work = 0;
+    halt()
+}
 
 #[cfg(test)]
 mod tests;

@@ -4,7 +4,7 @@
 //! `overlaps_prepared`) and inside the walls. The step sizes adapt toward
 //! [`ACCEPTANCE`].
 
-use super::{Partners, HALT_EVERY};
+use super::{halts, Partners};
 use crate::contact::Dimension;
 use crate::contact::{dot, overlaps_prepared, PreparedEllipsoid};
 use crate::octree::{wrap_coordinate, Neighbour, Octree, Params, Sphere};
@@ -44,6 +44,8 @@ pub(crate) struct MonteCarlo {
     step: f64,
     turn: f64,
     found: Vec<Neighbour>,
+    /// Neighbours looked at since the sweep last asked whether to stop (`halts`).
+    work: usize,
 }
 
 impl MonteCarlo {
@@ -59,11 +61,12 @@ impl MonteCarlo {
             step: FIRST_STEP * s * mean,
             turn: FIRST_TURN,
             found: Vec::new(),
+            work: 0,
         }
     }
 
     /// `sweeps` sweeps of the clean state at scale `s` (it stays clean), cut short
-    /// where `halt` says so (asked every [`HALT_EVERY`] grains); returns the moves
+    /// where `halt` says so (asked as [`halts`] says); returns the moves
     /// (displacements and turns) and the swaps kept.
     pub fn sweeps(
         &mut self,
@@ -86,7 +89,7 @@ impl MonteCarlo {
             let tree = octree_of(state, reach)?;
             let (mut tried, mut kept, mut turns_tried, mut turns_kept) = (0u64, 0u64, 0u64, 0u64);
             for g in 0..n {
-                if g % HALT_EVERY == 0 && halt() {
+                if halts(g, &mut self.work, halt) {
                     return Ok((moves, swaps));
                 }
                 let turning = p.rotation != Rotation::None && rng.random_bool(0.5);
@@ -136,7 +139,7 @@ impl MonteCarlo {
             let mut occupant: Vec<usize> = (0..n).collect();
             let mut place: Vec<usize> = (0..n).collect();
             for i in 0..n {
-                if i % HALT_EVERY == 0 && halt() {
+                if halts(i, &mut self.work, halt) {
                     return Ok((moves, swaps));
                 }
                 let j = partners.draw(state.volumes[i], rng);
@@ -212,6 +215,7 @@ impl MonteCarlo {
         }
         let (eg, bg) = (&e.0, e.0.bounding_radius());
         tree.neighbours(query, t * bg + reach, &mut self.found)?;
+        self.work += self.found.len();
         for nb in &self.found {
             let p = nb.id as usize;
             if skip.contains(&p) {

@@ -6,7 +6,7 @@
 //! with the largest bounding radius, and a grain's neighbours at a position are the
 //! stored positions within reach of its own bounding sphere.
 
-use super::{Partners, HALT_EVERY};
+use super::{halts, Partners};
 use crate::contact::{contact_function_fast, dot};
 use crate::octree::{Neighbour, Octree, Params, Sphere};
 use crate::packing::forces::pair_energy;
@@ -18,8 +18,7 @@ use rand_chacha::ChaCha8Rng;
 /// One sweep at scale `big_s` (the scale the energy is taken at): one swap attempt per
 /// grain, in index order, each with a partner drawn uniformly among the grains whose
 /// volume is within [`SWAP_VOLUME_RATIO`](super::SWAP_VOLUME_RATIO) of its own, kept
-/// when it lowers the energy; cut short where `halt` says so (asked every
-/// [`HALT_EVERY`] grains).
+/// when it lowers the energy; cut short where `halt` says so (asked as [`halts`] says).
 /// Returns the attempts (pairs compared) and the swaps kept.
 pub(crate) fn sweep(
     state: &mut State,
@@ -52,9 +51,10 @@ pub(crate) fn sweep(
         tree: &tree,
         big_s,
         found: &mut found,
+        work: 0,
     };
     for i in 0..n {
-        if i % HALT_EVERY == 0 && halt() {
+        if halts(i, &mut look.work, halt) {
             break;
         }
         let j = partners.draw(look.state.volumes[i], rng);
@@ -93,6 +93,8 @@ struct Look<'a> {
     tree: &'a Octree,
     big_s: f64,
     found: &'a mut Vec<Neighbour>,
+    /// Neighbours looked at since the sweep last asked whether to stop.
+    work: usize,
 }
 
 impl Look<'_> {
@@ -120,6 +122,7 @@ impl Look<'_> {
         let at = self.places[p];
         let (eg, bg) = (&s.shapes[g], s.shapes[g].bounding_radius());
         self.tree.neighbours(at, big_s * bg, self.found)?;
+        self.work += self.found.len();
         let mut energy = 0.0;
         for nb in self.found.iter() {
             let q = nb.id as usize;

@@ -122,6 +122,14 @@ fn sweeps_stop_when_told() {
     };
     let (attempts, _) = sweep(&mut state, 1.0, &mut rng, &second).unwrap();
     assert!(attempts > 0 && attempts <= HALT_EVERY as u64, "{attempts}");
+    // Asked every HALT_EVERY grains, and sooner once the attempts since have looked at
+    // HALT_WORK neighbours (grains with thousands each), which then count afresh.
+    let (yes, no) = (|| true, || false);
+    assert!(halts(0, &mut 0, &yes) && halts(2 * HALT_EVERY, &mut 0, &yes));
+    assert!(!halts(1, &mut (HALT_WORK - 1), &yes));
+    let mut work = HALT_WORK;
+    assert!(halts(1, &mut work, &yes) && work == 0);
+    assert!(!halts(HALT_EVERY, &mut 5, &no));
 }
 
 fn pack_on(threads: usize, scene: &Scene, specs: &[GrainSpec]) -> Packing {
