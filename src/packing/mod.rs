@@ -98,7 +98,7 @@ use fire::{Context, Fire};
 use jamming::Patience;
 use neighbours::Neighbours;
 pub(crate) use snapshot::clean_scale;
-use snapshot::{finish, keep_denser, restore, turn_back, Snapshot};
+use snapshot::{finish, keep_denser, turn_back, Snapshot};
 use state::State;
 use time_limit::{timed_steps, GIVE_WAY, GIVE_WAY_TARGET};
 
@@ -316,23 +316,14 @@ pub fn pack(
                 fire.set_window(half_window);
                 // The densest clean state is annealed from below its jamming point
                 // (module `unjam`), and the bisection goes on from the result.
-                let mut above = f64::INFINITY;
-                if let Some(b) = &best {
-                    restore(&mut state, b)?;
-                    let (clean, bound) =
-                        unjammer.anneal(&mut state, &mut fire, &mut run, &protocol, b.scale)?;
-                    above = bound;
-                    if b.scale < clean {
-                        best = Some(Snapshot::of(&state, clean.min(1.0)));
-                    }
-                }
-                let low = best.as_ref().map_or(0.0, |b| b.scale);
+                let loop_state = (&mut state, &mut fire, &mut run);
+                let resolution = params.jam_resolution;
+                let (low, above) =
+                    unjammer.anneal_cycle(loop_state, &protocol, &mut best, resolution)?;
                 if low >= 1.0 {
                     break StopReason::TargetReached;
                 }
-                // At least one trial above the densest state.
-                stuck = above.max(low * (1.0 + 2.0 * params.jam_resolution));
-                s = 0.5 * (low + stuck);
+                (stuck, s) = (above, 0.5 * (low + above));
                 continue;
             }
             s = start_cycle(low, depth);

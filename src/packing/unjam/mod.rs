@@ -37,6 +37,7 @@ mod monte_carlo;
 mod swap;
 
 use super::fire::{Context, Fire};
+use super::snapshot::{restore, Snapshot};
 use super::state::State;
 use super::Outcome;
 use super::{PackError, ProtocolParams};
@@ -139,18 +140,30 @@ impl Unjammer {
         self.mode == Unjam::Anneal
     }
 
-    /// Anneals the clean state at scale `low` (module `anneal`): returns the largest
-    /// clean scale reached (the state is left there) and an upper bound for the
-    /// bisection.
-    pub fn anneal(
+    /// A cycle of `"anneal"`: the densest clean state `best` is annealed from below its
+    /// jamming point (module `anneal`) and replaced where the result is denser. Returns
+    /// the bisection's next bracket, the densest clean scale and a stuck one: the
+    /// anneal's upper bound, and at least two resolutions (`resolution`, relative) above
+    /// the densest state, so that one trial lies above it.
+    pub fn anneal_cycle(
         &mut self,
-        state: &mut State,
-        fire: &mut Fire,
-        run: &mut Context<'_>,
+        (state, fire, run): (&mut State, &mut Fire, &mut Context<'_>),
         protocol: &ProtocolParams,
-        low: f64,
+        best: &mut Option<Snapshot>,
+        resolution: f64,
     ) -> Result<(f64, f64), PackError> {
-        anneal::anneal(state, fire, run, protocol, low, &mut self.rng)
+        let mut above = f64::INFINITY;
+        if let Some(b) = best.as_ref() {
+            restore(state, b)?;
+            let (clean, bound) =
+                anneal::anneal(state, fire, run, protocol, b.scale, &mut self.rng)?;
+            above = bound;
+            if b.scale < clean {
+                *best = Some(Snapshot::of(state, clean.min(1.0)));
+            }
+        }
+        let low = best.as_ref().map_or(0.0, |b| b.scale);
+        Ok((low, above.max(low * (1.0 + 2.0 * resolution))))
     }
 
     /// The moves before a recompression cycle: the state is about to be relaxed at
