@@ -168,7 +168,7 @@ impl Descent {
 
 /// The next segment's scale after one at `s` that did not come out clean, from the
 /// forces evaluated there at `s (1 + margin)` and the grains' mean squared inscribed
-/// radius `rho2` (`Fire::mean_rho2`); `None` when that would not lie above
+/// radius `rho2` (`State::mean_rho2`); `None` when that would not lie above
 /// the densest clean scale `low` by more than the resolution (the bisection takes
 /// over). From above the target, the target itself when the step would end near or
 /// above it ([`TARGET_BELOW`]) and `target` (not yet tried).

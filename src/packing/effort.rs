@@ -57,8 +57,10 @@ pub(super) fn recompression(specs: &[GrainSpec]) -> f64 {
 /// against 22 s), where `effort = 1.5` reaches 0.30 in 13 s; 1 146 frozen spheroids of
 /// aspect 6 asked 0.60 0.503–0.504 instead of 0.443–0.446 (5 times, 11 s; BENCHMARKS.md,
 /// "Frozen slender grains spread before the search").
-pub(super) fn spreads_first(specs: &[GrainSpec], turning: bool, effort: f64) -> bool {
-    !turning && effort >= QUENCH_MIN_EFFORT && recompression(specs) == DEEP_RECOMPRESSION
+///
+/// `depth` is the grains' [`recompression`], which `pack` has at hand.
+pub(super) fn spreads_first(depth: f64, turning: bool, effort: f64) -> bool {
+    !turning && effort >= QUENCH_MIN_EFFORT && depth == DEEP_RECOMPRESSION
 }
 
 /// Whether the spread of [`spreads_first`] keeps the candidate list within

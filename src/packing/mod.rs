@@ -178,7 +178,7 @@ pub fn pack(
     let depth = recompression(specs);
     // Frozen slender grains: their first jam is spread before the search (`effort`,
     // `spreads_first`), which then bisects.
-    let (mut spread, mut spread_done) = (spreads_first(specs, turning, params.effort), false);
+    let (mut spread, mut spread_done) = (spreads_first(depth, turning, params.effort), false);
     let mut unjammer =
         unjam::Unjammer::new(params.unjam, recompression_cycles(params.effort), seed);
     // Until the first jam deep enough to search from (`effort::QUENCH_STEP`).
@@ -275,10 +275,12 @@ pub fn pack(
             Outcome::Stuck | Outcome::Budget => {
                 keep_denser(&mut best, &mut state, &mut run, &protocol, s)?;
                 // Under a time limit, only while relaxations above the target may run.
-                let room = params.time_limit.is_none()
-                    || give_way_above.is_some_and(|d| Instant::now() < d);
+                let room = || {
+                    let ahead = give_way_above.is_some_and(|d| Instant::now() < d);
+                    params.time_limit.is_none() || ahead
+                };
                 let fits = || spread_fits(run.neighbours.pairs.len(), domain.dimension);
-                if quenching && !gave_way && std::mem::take(&mut spread) && room && fits() {
+                if quenching && !gave_way && std::mem::take(&mut spread) && room() && fits() {
                     (s, spread_done) = (start_cycle(s, depth), true);
                     continue;
                 }
